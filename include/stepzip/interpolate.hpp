@@ -1,0 +1,4 @@
+// stepzip — every forward interpolator (vectors -> steps), one header per family.
+#pragma once
+
+#include "stepzip/interpolate/linear.hpp"

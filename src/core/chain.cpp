@@ -1,0 +1,80 @@
+#include "stepzip/chain.hpp"
+
+#include <cstdlib>
+
+#include "stepzip/segment.hpp"
+
+namespace stepzip {
+
+Point Chain::end() const noexcept {
+    Point p = start;
+    for (Step s : steps) apply_step(p, s, axes);
+    return p;
+}
+
+bool Chain::four_connected() const noexcept {
+    for (Step s : steps)
+        if (step_weight(s) != 1) return false;
+    return true;
+}
+
+Result<std::string> to_freeman(const Chain& chain) {
+    if (chain.axes != 2)
+        return make_error(Errc::invalid_argument, "Freeman codes need a two-axis chain");
+    std::string codes;
+    codes.reserve(chain.steps.size());
+    for (std::size_t i = 0; i < chain.steps.size(); ++i) {
+        const int c = step_to_freeman(chain.steps[i]);
+        if (c < 0)
+            return make_error(Errc::invalid_argument,
+                              "step " + std::to_string(i + 1) + " has no Freeman code");
+        codes.push_back(static_cast<char>('0' + c));
+    }
+    return codes;
+}
+
+Result<Chain> from_freeman(std::int64_t x0, std::int64_t y0, std::string_view codes) {
+    Chain chain;
+    chain.axes = 2;
+    chain.start[0] = x0;
+    chain.start[1] = y0;
+    chain.steps.reserve(codes.size());
+    for (std::size_t i = 0; i < codes.size(); ++i) {
+        const char c = codes[i];
+        if (c < '0' || c > '7')
+            return make_error(Errc::syntax, "character " + std::to_string(i + 1) +
+                                                " is not a Freeman code 0-7");
+        chain.steps.push_back(freeman_to_step(c - '0'));
+    }
+    return chain;
+}
+
+std::vector<Point> chain_points(const Chain& chain) {
+    std::vector<Point> pts;
+    pts.reserve(chain.steps.size() + 1);
+    Point p = chain.start;
+    pts.push_back(p);
+    for (Step s : chain.steps) {
+        apply_step(p, s, chain.axes);
+        pts.push_back(p);
+    }
+    return pts;
+}
+
+int leading_axis(const Point& delta, int axes) noexcept {
+    int lead = 0;
+    for (int i = 1; i < axes; ++i)
+        if (std::llabs(delta[i]) > std::llabs(delta[lead])) lead = i;
+    return lead;
+}
+
+std::int64_t segment_length(const Point& delta, int axes, bool eight_connected) noexcept {
+    std::int64_t n = 0;
+    for (int i = 0; i < axes; ++i) {
+        const std::int64_t v = std::llabs(delta[i]);
+        n = eight_connected ? (v > n ? v : n) : n + v;
+    }
+    return n;
+}
+
+}  // namespace stepzip
