@@ -11,7 +11,12 @@ namespace stepzip::cli {
 
 const std::vector<Command>& commands() {
     static const std::vector<Command> table = {
+        {"compress", "-z", cmd_compress, "chain files -> .stz (lossless, verified)"},
+        {"decompress", "-d", cmd_decompress, ".stz -> the original chain files"},
+        {"verify", "-t", cmd_verify, "exit 0 only if the round trip is exact"},
+        {"info", "-l", cmd_info, "profile, chains, steps, segments, bits/step"},
         {"interpolate", nullptr, cmd_interpolate, "vectors (G-code, HP-GL) -> steps (forward)"},
+        {"segment", nullptr, cmd_segment, "steps -> vectors (G-code, HP-GL, SVG, JSON)"},
     };
     return table;
 }

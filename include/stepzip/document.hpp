@@ -1,0 +1,107 @@
+// stepzip — chain files (freeman, points, steps) read and written byte-exactly.
+//
+// A BlockReader parses input bytes, in pieces of any size, into Blocks: the
+// chains of a bounded stretch of the input plus a "layout" that records
+// everything that is not chain steps (comments, blank lines, spacing, line
+// endings, idle ticks ...). A BlockWriter turns the same Blocks back into the
+// identical bytes. Memory is bounded by the block size, not the input size:
+// a chain longer than a block is split across blocks.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepzip/chain.hpp"
+#include "stepzip/error.hpp"
+
+namespace stepzip {
+
+/// Chain file formats (SPEC section 5). The numeric values are stored in .stz files.
+enum class InputFormat : std::uint8_t {
+    freeman = 0,  ///< one chain per line: "X0 Y0 CODES", '#' comments
+    points = 1,   ///< one point per line ("x y" or "x,y", N columns), blank line ends a chain
+    steps = 2,    ///< binary STEP/DIR log, one byte per tick, up to 4 axes
+};
+
+std::string_view format_name(InputFormat f) noexcept;
+std::optional<InputFormat> parse_format(std::string_view name) noexcept;
+
+/// Guesses the format from the first bytes of an input (up to a few KiB).
+/// Returns nullopt when no format fits.
+std::optional<InputFormat> detect_format(std::string_view head) noexcept;
+
+/// Default number of steps per block.
+inline constexpr std::size_t kDefaultBlockSteps = std::size_t{1} << 20;
+
+/// A bounded stretch of an input file.
+struct Block {
+    int axes = 2;               ///< axis count of every chain in the block
+    std::vector<Chain> chains;  ///< chains, or pieces of chains, in input order
+    /// chains[0] continues the last chain of the previous block: its start
+    /// equals that chain's end point.
+    bool continues = false;
+    /// The last chain goes on in the next block.
+    bool open = false;
+    /// Format-private record of all non-step bytes; opaque to the container.
+    /// An empty layout means the canonical rendering (for writing only).
+    std::string layout;
+};
+
+/// Incremental parser: input bytes in, Blocks out. Not thread-safe (one
+/// object per stream); different objects are independent.
+class BlockReader {
+public:
+    /// `source` names the input in error messages ("plot.fc", "<stdin>").
+    BlockReader(InputFormat format, std::string source,
+                std::size_t block_steps = kDefaultBlockSteps);
+    ~BlockReader();
+    BlockReader(BlockReader&&) noexcept;
+    BlockReader& operator=(BlockReader&&) noexcept;
+
+    /// Feeds the next piece of input; `last` marks the end of the input.
+    /// Errors: Errc::syntax / Errc::not_a_step / Errc::limit with a message
+    /// "SOURCE:LINE:COLUMN: ..." (text formats) or "SOURCE: byte N: ..."
+    /// (steps). After an error the reader must not be used again.
+    Result<void> feed(std::string_view data, bool last);
+
+    /// Moves the next finished block into `out`; false when none is ready.
+    bool next(Block& out);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Renderer: Blocks in, the exact input bytes out. Not thread-safe.
+class BlockWriter {
+public:
+    explicit BlockWriter(InputFormat format);
+    ~BlockWriter();
+    BlockWriter(BlockWriter&&) noexcept;
+    BlockWriter& operator=(BlockWriter&&) noexcept;
+
+    /// Appends the bytes of `block` to `out`.
+    /// Errors: Errc::corrupt when the layout does not fit the chains.
+    Result<void> write(const Block& block, std::string& out);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Convenience: the canonical text (or bytes) of whole chains in `format`.
+/// Errors: Errc::invalid_argument when a chain does not fit the format
+/// (e.g. freeman needs two axes, steps at most four axes and a start at 0).
+Result<std::string> write_chains(InputFormat format, const std::vector<Chain>& chains);
+
+/// Convenience: parses a whole input held in memory into chains (pieces of
+/// a chain split across blocks are joined).
+Result<std::vector<Chain>> read_chains(InputFormat format, std::string_view data,
+                                       std::string source = "<input>");
+
+}  // namespace stepzip
