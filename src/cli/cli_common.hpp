@@ -1,0 +1,103 @@
+// stepzip command line: helpers shared by the subcommands — reading an input
+// (file or stdin), writing an output atomically (temporary file + rename),
+// the one-line error report, and a terminal progress line.
+//
+// None of these are thread-safe; the command line is single-threaded where it
+// calls them.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "stepzip/error.hpp"
+
+namespace stepzip::cli {
+
+/// True when `path` names standard input or output ("-" or empty).
+bool is_dash(std::string_view path) noexcept;
+
+/// The name of an input in messages: "<stdin>" for "-" / empty, else `path`.
+std::string input_name(std::string_view path);
+
+/// Reads a whole input into memory: the file `path`, or standard input for
+/// "-" / empty. Errors: Errc::io "PATH: <reason>".
+Result<std::string> read_input(const std::string& path);
+
+/// True when the stream is a terminal.
+bool is_terminal(std::FILE* stream) noexcept;
+
+/// Prints "stepzip: <message>" on stderr; returns 1 (the error exit code).
+int report(const Error& error);
+/// Prints "stepzip: <message>" and a hint to use --help on stderr; returns 2
+/// (the usage-error exit code).
+int usage_error(std::string_view message);
+/// Prints "stepzip: <message>" on stderr (a note or warning; no exit code).
+void note(std::string_view message);
+
+/// An output written in one piece: to standard output, or to a temporary file
+/// next to the target that commit() flushes, syncs and renames over the target.
+/// If commit() is never reached (an error, an early return) the destructor
+/// removes the temporary file, so a failure never leaves a partial output and
+/// never touches an existing file.
+class OutputFile {
+public:
+    OutputFile() = default;
+    ~OutputFile();
+    OutputFile(OutputFile&& other) noexcept;
+    OutputFile& operator=(OutputFile&& other) noexcept;
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+
+    /// Opens the output `path` ("-" / empty: standard output). An existing
+    /// file is refused unless `force`. Errors: Errc::io
+    /// "PATH: already exists (use -f to overwrite)" or "PATH: <reason>".
+    static Result<OutputFile> open(const std::string& path, bool force);
+
+    /// Appends bytes. Errors: Errc::io naming the target.
+    Result<void> write(std::string_view data);
+    /// Finishes the output: flush, fsync and rename for a file; flush for
+    /// standard output. Errors: Errc::io naming the target.
+    Result<void> commit();
+
+    /// True when the output is standard output.
+    bool is_stdout() const noexcept { return to_stdout_; }
+    /// The target's name for messages ("<stdout>" or the path).
+    const std::string& name() const noexcept { return target_; }
+
+private:
+    void discard() noexcept;
+
+    std::string target_;
+    std::string temp_;
+    std::FILE* file_ = nullptr;
+    bool to_stdout_ = false;
+    bool done_ = false;
+};
+
+/// A progress line on stderr ("label: 42%"), shown only when enabled and
+/// stderr is a terminal, updated at most a few times a second, erased by
+/// finish() or the destructor.
+class Progress {
+public:
+    Progress(std::string label, std::uint64_t total, bool enabled = true);
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    /// Reports that `done` of `total` units are finished.
+    void update(std::uint64_t done);
+    /// Erases the line (idempotent).
+    void finish();
+
+private:
+    std::string label_;
+    std::uint64_t total_;
+    bool active_;
+    bool shown_ = false;
+    std::chrono::steady_clock::time_point last_{};
+};
+
+}  // namespace stepzip::cli
