@@ -1,0 +1,201 @@
+// stepzip — vector exchange (SPEC §5): G-code and HP-GL in both directions,
+// SVG and JSON out.
+//
+// The vector model is deliberately small: a drawing is a list of pen-down
+// paths; each path has a start point and a sequence of moves, a straight line
+// or a circular arc to an end point. Every coordinate is an integer number of
+// steps (after the step size, if any, has been applied by the reader).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepzip/chain.hpp"
+#include "stepzip/error.hpp"
+#include "stepzip/profile.hpp"
+#include "stepzip/segment.hpp"
+#include "stepzip/segmenter.hpp"
+
+namespace stepzip {
+
+/// Largest |coordinate|, in steps, a reader accepts (2^30; the same bound as
+/// kMaxSegmentTotal, so the totals of a line between two accepted points are
+/// at most 2^31 and interpolators check their own tighter limits).
+inline constexpr std::int64_t kMaxVectorCoord = std::int64_t{1} << 30;
+
+/// What a move draws.
+enum class MoveKind : std::uint8_t {
+    line,     ///< straight line to (x, y)
+    arc_cw,   ///< clockwise arc about (cx, cy) to (x, y) (G2)
+    arc_ccw,  ///< counter-clockwise arc about (cx, cy) to (x, y) (G3)
+};
+
+/// One pen-down move. Coordinates are absolute, in steps.
+struct VectorMove {
+    MoveKind kind = MoveKind::line;
+    std::int64_t x = 0, y = 0;    ///< end point
+    std::int64_t cx = 0, cy = 0;  ///< arc centre (arcs only; 0 for lines)
+    std::uint32_t line = 0;       ///< 1-based source line of the move (0: not from a file)
+    std::uint32_t column = 0;     ///< 1-based source column of the move's first word
+    friend bool operator==(const VectorMove& a, const VectorMove& b) {
+        return a.kind == b.kind && a.x == b.x && a.y == b.y && a.cx == b.cx && a.cy == b.cy;
+    }
+};
+
+/// One pen-down path: where the pen goes down, then its moves (at least one).
+struct VectorPath {
+    std::int64_t x0 = 0, y0 = 0;
+    std::vector<VectorMove> moves;
+    friend bool operator==(const VectorPath&, const VectorPath&) = default;
+};
+
+using Drawing = std::vector<VectorPath>;
+
+/// A step size: millimetres per step, held exactly as an integer number of
+/// 10^-12 mm (a decimal with up to 12 fraction digits).
+struct StepSize {
+    std::int64_t mm_e12 = 0;
+};
+
+/// Parses a step size such as "0.0125". Errors: Errc::invalid_argument
+/// (not a decimal number, not positive, more than 12 fraction digits, larger
+/// than 10^6 mm).
+Result<StepSize> parse_step_size(std::string_view text);
+
+/// Vector input formats.
+enum class VectorFormat : std::uint8_t { gcode, hpgl };
+
+std::string_view vector_format_name(VectorFormat f) noexcept;
+std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
+
+/// Guesses G-code or HP-GL from the first bytes of a file: HP-GL when the
+/// first instruction is a two-letter HP-GL mnemonic (IN, PU, PD, PA, PR, SP,
+/// DF) followed by a parameter, ';' or another mnemonic; G-code when the
+/// first word is a letter and a number (G0, N10, M3 ...) or the text starts
+/// with a comment or '%'. nullopt when neither fits. Thread-safe.
+std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept;
+
+/// Options of the readers.
+struct VectorReadOptions {
+    std::string source = "<input>";   ///< names the input in error messages
+    std::optional<StepSize> step_size;  ///< absent: coordinates are steps
+};
+
+/// Reads G-code. Accepted (case-insensitive, spaces allowed between a letter
+/// and its number):
+///  - G0 (rapid: pen up, the next drawing move starts a new path), G1 (line),
+///    G2 / G3 (clockwise / counter-clockwise arc with centre offsets I, J
+///    relative to the arc's start), modal: a line with only X/Y/I/J repeats
+///    the last of G0-G3; X or Y may be omitted (the axis stays);
+///  - G90 / G91 absolute / relative X Y; G20 / G21 inches / millimetres
+///    (matter only with a step size; default millimetres); G17 (XY plane),
+///    G94 (feed per minute), G4 P.. (dwell) accepted and ignored;
+///  - F (feed), S (spindle/laser power), T (tool), M (machine functions: M3 /
+///    M5 pen or spindle control, M2 / M30 end ...) and N (line numbers) are
+///    accepted and ignored: only G0 moves break paths;
+///  - comments "; ..." to the end of the line and "( ... )", blank lines,
+///    lines holding only '%';
+///  - the pen starts up at (0, 0); a G1-G3 with no earlier G0 starts a path
+///    at the current position; moves that go nowhere are dropped, and a path
+///    with no moves (a dot) is not output.
+/// Coordinates: without a step size a value must be a whole number of steps
+/// ("7" or "7.000"); with one, the exact decimal position (relative moves
+/// accumulate exactly) is divided by the step size and rounded to the nearest
+/// step, halves away from zero. Arc centres are rounded the same way.
+/// Errors (messages "SOURCE:LINE:COLUMN: ..."): Errc::unsupported for a word
+/// that is not listed above ("unsupported word 'G28'"), an arc without I/J
+/// or with R, a Z move; Errc::syntax for malformed numbers, a repeated word,
+/// two motion words on one line, a character that starts no word, an
+/// unterminated comment, too many fraction digits (more than 12);
+/// Errc::limit for a coordinate beyond kMaxVectorCoord steps.
+/// Thread-safe. Does not check that an arc's end lies on its circle (the
+/// interpolator does that).
+Result<Drawing> read_gcode(std::string_view text, const VectorReadOptions& options = {});
+
+/// Reads HP-GL. Accepted: PU / PD (pen up / down, optional coordinate pairs
+/// moved to with that pen), PA / PR (absolute / relative mode, optional
+/// coordinate pairs moved to with the current pen); IN (initialize: pen up,
+/// absolute, at (0, 0)), DF, SP, VS, LT, PW, PG, and SC / IP without
+/// parameters, all accepted and ignored; instructions separated by ';',
+/// newlines or spaces, or written back to back ("PUPD"); parameters
+/// separated by commas or spaces. The pen starts up at (0, 0); a path starts
+/// where the pen goes down and ends when it goes up.
+/// Coordinates: plotter units. Without a step size they are steps (whole
+/// numbers); with one, a plotter unit is 0.025 mm and positions are rounded
+/// as for G-code.
+/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::unsupported for any other
+/// instruction or SC / IP with parameters ("unsupported instruction 'CI'");
+/// Errc::syntax for an odd number of coordinates, a malformed number, a
+/// character that starts no instruction; Errc::limit as for G-code.
+/// Thread-safe.
+Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& options = {});
+
+/// Dispatches to read_gcode / read_hpgl.
+Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
+                             const VectorReadOptions& options = {});
+
+/// Options of the G-code writer.
+struct GcodeWriteOptions {
+    bool relative = false;              ///< G91 with incremental X Y (default: G90 absolute)
+    std::optional<StepSize> step_size;  ///< write millimetres (exact decimals) instead of steps
+};
+
+/// G-code text: a header comment, G90 (or G91) and G21 when a step size is
+/// given, then per path a G0 to its start and one G1 / G2 / G3 per move with
+/// integer (or exact decimal) X Y words; arcs carry I J relative to their
+/// start. Reading the text back with the same step size gives `drawing`
+/// again (apart from moves that go nowhere). Thread-safe.
+std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options = {});
+
+/// HP-GL text: "IN;SP1;" then per path "PU x0,y0;PD x1,y1,...;" and
+/// "PU;SP0;" at the end; coordinates are steps (absolute).
+/// Errors: Errc::unsupported when the drawing holds an arc (HP-GL's arcs are
+/// given by angle, which integer end points cannot carry exactly).
+/// Thread-safe.
+Result<std::string> write_hpgl(const Drawing& drawing);
+
+/// A chain together with the segments reverse interpolation found for it.
+struct SegmentedChain {
+    Chain chain;
+    /// The segments in order. When `exact`, expanding them under the profile
+    /// reproduces chain.steps; otherwise (the patent approximation mode) only
+    /// their end points are meaningful and their phases are the defaults.
+    std::vector<Segment> segments;
+};
+
+/// The drawing of segmented two-axis chains: one path per chain that has
+/// steps, one line move per segment (its end point), starting at the chain's
+/// start. Errors: Errc::unsupported for a chain that is not two-axis.
+Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains);
+
+/// How a segment looks, for colouring: an axis-parallel run, a 45° diagonal,
+/// or a general slope.
+enum class SegmentShape : std::uint8_t { run, diagonal, slope };
+SegmentShape segment_shape(const Segment& segment) noexcept;
+
+/// What the SVG and JSON writers say about the cut.
+struct CutInfo {
+    Profile profile = Profile::eval8;
+    SegmenterKind segmenter = SegmenterKind::greedy;
+    bool exact = true;                 ///< false for the patent approximation mode
+    std::optional<SegmentStats> stats;  ///< the patent mode's deviation, when known
+};
+
+/// An SVG picture: each chain's unit steps as a thin grey polyline, its
+/// segments drawn over it as lines (one colour per SegmentShape; dashed when
+/// the cut is not exact), segment end points as small dots, the chain start
+/// as a larger circle. y grows upwards (the picture is flipped). Two-axis
+/// chains only. Errors: Errc::unsupported for another axis count.
+/// Thread-safe. The exact markup may change between versions.
+Result<std::string> write_svg(const std::vector<SegmentedChain>& chains, const CutInfo& info);
+
+/// JSON: {"profile", "segmenter", "exact", "stats" (patent mode), "chains":
+/// [{"start": [..], "steps": N, "segments": [{"delta": [..], "phase": [..]}]}]}
+/// with one phase per evaluation function (phase_count()). Any axis count.
+/// Thread-safe. Key order and spacing may change between versions.
+std::string write_json(const std::vector<SegmentedChain>& chains, const CutInfo& info);
+
+}  // namespace stepzip
