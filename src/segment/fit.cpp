@@ -1,0 +1,143 @@
+// Fitting one exact segment to a run of steps, with the phase nearest the
+// profile's default (SPEC §3, §4). Complexity: O(steps · axes).
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+
+#include "stepzip/segment/recognizer.hpp"
+
+namespace stepzip {
+
+namespace {
+
+constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
+
+// Signs fixed per segment; fills delta. False on a sign change or an empty run.
+bool totals(std::span<const Step> steps, int axes, Point& delta) {
+    int sign[kMaxAxes] = {};
+    delta = {};
+    for (Step s : steps)
+        for (int i = 0; i < axes; ++i) {
+            const int d = step_axis(s, i);
+            if (d == 0) continue;
+            if (sign[i] != 0 && sign[i] != d) return false;
+            sign[i] = d;
+            delta[i] += d;
+        }
+    return !steps.empty();
+}
+
+// Interval [lo, hi) of phases that produce the word letter(0..n-1) under the
+// two-letter rule with counts (a, b) = (#zeros, #ones); empty when lo >= hi.
+template <class Letter>
+std::pair<std::int64_t, std::int64_t> word_phases(std::size_t n, Letter letter, std::int64_t a,
+                                                  std::int64_t b) {
+    std::int64_t lo = -kInf, hi = kInf, p = 0, q = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::int64_t g = p * b - q * a;
+        if (letter(k) == 0) { lo = std::max(lo, g); ++p; }
+        else { hi = std::min(hi, g); ++q; }
+        if (lo >= hi) break;
+    }
+    return {lo, hi};
+}
+
+std::optional<std::int64_t> pick(Profile p, std::int64_t a, std::int64_t b, std::int64_t lo,
+                                 std::int64_t hi) {
+    const PhaseRange r = phase_range(p, a, b);
+    lo = std::max(lo, r.lo);
+    hi = std::min(hi, r.hi);
+    if (lo >= hi) return std::nullopt;
+    return std::clamp(default_phase(p, a, b), lo, hi - 1);
+}
+
+std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta) {
+    for (Step s : steps)
+        if (step_weight(s) != 1) return std::nullopt;
+    const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
+    Segment seg;
+    seg.delta = delta;
+    if (a == 0 || b == 0) {
+        seg.phase[0] = default_phase(Profile::eval4, a, b);
+        return seg;
+    }
+    auto [lo, hi] = word_phases(steps.size(),
+                                [&](std::size_t k) { return step_axis(steps[k], 0) != 0 ? 0 : 1; },
+                                a, b);
+    const auto f = pick(Profile::eval4, a, b, lo, hi);
+    if (!f) return std::nullopt;
+    seg.phase[0] = *f;
+    return seg;
+}
+
+std::optional<Segment> fit_leading(Profile p, std::span<const Step> steps, int axes,
+                                   const Point& delta) {
+    const int lead = leading_axis(delta, axes);
+    const std::int64_t l = std::llabs(delta[lead]);
+    if (l != static_cast<std::int64_t>(steps.size())) return std::nullopt;  // lead must move every tick
+    Segment seg;
+    seg.delta = delta;
+    int j = 0;
+    for (int i = 0; i < axes; ++i) {
+        if (i == lead) continue;
+        const std::int64_t s = std::llabs(delta[i]);
+        if (s == 0 || s == l) {
+            seg.phase[j++] = default_phase(p, l, s);
+            continue;
+        }
+        auto [lo, hi] = word_phases(steps.size(),
+                                    [&](std::size_t k) { return step_axis(steps[k], i) != 0 ? 1 : 0; },
+                                    l - s, s);
+        const auto f = pick(p, l, s, lo, hi);
+        if (!f) return std::nullopt;
+        seg.phase[j++] = *f;
+    }
+    return seg;
+}
+
+// Patent forward mode (Fig. 4) with remaining counters x, y and adder F:
+// F < 0 and x > 0: x-step, F += y; else y-step, F -= x; y == 0 forces x.
+// With f the adder's change since the start, a free (unforced) x-step needs
+// F0 < -f and a free y-step needs F0 >= -f: one linear constraint per step.
+std::optional<Segment> fit_patent(std::span<const Step> steps, const Point& delta) {
+    for (Step s : steps)
+        if (step_weight(s) != 1) return std::nullopt;
+    const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
+    std::int64_t x = a, y = b, f = 0, lo = -kInf, hi = kInf;
+    for (Step s : steps) {
+        const bool xs = step_axis(s, 0) != 0;
+        if (x > 0 && y > 0) {
+            if (xs) hi = std::min(hi, -f);
+            else lo = std::max(lo, -f);
+            if (lo >= hi) return std::nullopt;
+        }
+        if (xs) { --x; f += y; }
+        else { --y; f -= x; }
+    }
+    const auto ph = pick(Profile::patent, a, b, lo, hi);
+    if (!ph) return std::nullopt;
+    Segment seg;
+    seg.delta = delta;
+    seg.phase[0] = *ph;
+    return seg;
+}
+
+}  // namespace
+
+std::optional<Segment> fit_segment(Profile p, std::span<const Step> steps, int axes) {
+    if (axes < 2 || axes > profile_max_axes(p)) return std::nullopt;
+    Point delta;
+    if (!totals(steps, axes, delta)) return std::nullopt;
+    for (int i = 0; i < axes; ++i)
+        if (std::llabs(delta[i]) > kMaxSegmentTotal) return std::nullopt;
+    switch (p) {
+        case Profile::eval4: return fit_eval4(steps, delta);
+        case Profile::patent: return fit_patent(steps, delta);
+        case Profile::eval8:
+        case Profile::grbl:
+        case Profile::marlin: return fit_leading(p, steps, axes, delta);
+    }
+    return std::nullopt;
+}
+
+}  // namespace stepzip
