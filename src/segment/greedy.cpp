@@ -3,14 +3,11 @@
 #include <cassert>
 
 #include "stepzip/segment/recognizer.hpp"
+#include "internal.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
 namespace stepzip {
 
-namespace {
-
-// Steps from steps[0] that keep one sign per axis (and one axis per step),
-// at most `cap`: the hard limit of a patent segment.
 std::int64_t patent_reach(std::span<const Step> steps, std::int64_t cap) {
     int sx = 0, sy = 0;
     std::int64_t n = 0;
@@ -29,13 +26,35 @@ std::int64_t patent_reach(std::span<const Step> steps, std::int64_t cap) {
     return n;
 }
 
-}  // namespace
+bool patent_prefix_exact(std::span<const Step> steps, std::int64_t m, std::int64_t a,
+                         std::int64_t b) {
+    if (a == 0 || b == 0) return true;
+    const PhaseRange r = phase_range(Profile::patent, a, b);
+    std::int64_t x = a, y = b, f = 0, lo = r.lo, hi = r.hi;
+    for (std::int64_t k = 0; k < m && x > 0 && y > 0; ++k) {
+        if (step_axis(steps[static_cast<std::size_t>(k)], 0) != 0) {
+            hi = std::min(hi, -f);
+            --x;
+            f += y;
+        } else {
+            lo = std::max(lo, -f);
+            --y;
+            f -= x;
+        }
+        if (lo >= hi) return false;
+    }
+    return true;
+}
 
 std::int64_t GreedySegmenter::longest(std::span<const Step> steps) const {
     if (steps.empty()) return 0;
     if (profile_ == Profile::patent) {
-        for (std::int64_t m = patent_reach(steps, kPatentMaxSegment); m > 1; --m)
-            if (fit_segment(profile_, steps.first(static_cast<std::size_t>(m)), axes_)) return m;
+        const std::int64_t reach = patent_reach(steps, kPatentMaxSegment);
+        std::vector<std::int64_t> xs(static_cast<std::size_t>(reach) + 1, 0);
+        for (std::int64_t k = 0; k < reach; ++k)
+            xs[k + 1] = xs[k] + (step_axis(steps[static_cast<std::size_t>(k)], 0) != 0);
+        for (std::int64_t m = reach; m > 1; --m)
+            if (patent_prefix_exact(steps, m, xs[m], m - xs[m])) return m;
         return 1;
     }
     SegmentRecognizer rec(profile_, axes_);

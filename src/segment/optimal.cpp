@@ -2,6 +2,7 @@
 #include <cassert>
 #include <limits>
 
+#include "internal.hpp"
 #include "stepzip/segment/recognizer.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
@@ -40,11 +41,13 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
         if (greedy_end[s] != 0) relax(s, greedy_end[s]);
         const std::size_t lim = std::min(n, s + window);
         if (patent) {
-            for (std::size_t e = s + 1; e <= lim; ++e) {
-                if (e > s + 1 && step_weight(steps[e - 1]) != 1) break;
-                if (fit_segment(profile_, steps.subspan(s, e - s), axes_)) relax(s, e);
+            const auto rest = steps.subspan(s);
+            const std::int64_t reach = patent_reach(rest, static_cast<std::int64_t>(lim - s));
+            std::int64_t xs = 0;
+            for (std::int64_t m = 1; m <= reach; ++m) {
+                xs += step_axis(rest[static_cast<std::size_t>(m - 1)], 0) != 0;
+                if (patent_prefix_exact(rest, m, xs, m - xs)) relax(s, s + static_cast<std::size_t>(m));
             }
-            relax(s, s + 1);
             continue;
         }
         rec.reset();
