@@ -1,13 +1,214 @@
-// stepzip segment (not built yet).
-#include <cstdio>
+// stepzip segment: unit-step chains -> vectors (G-code, HP-GL, SVG, JSON) by
+// reverse interpolation (SPEC §6).
+#include <boost/program_options.hpp>
 
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "stepzip/document.hpp"
+#include "stepzip/profile.hpp"
+#include "stepzip/segmenter.hpp"
+#include "stepzip/vectors.hpp"
+
+namespace po = boost::program_options;
 
 namespace stepzip::cli {
 
-int cmd_segment(const std::vector<std::string>&) {
-    std::fprintf(stderr, "stepzip segment: not built yet\n");
-    return 1;
+namespace {
+
+enum class VectorOut { gcode, hpgl, svg, json };
+
+std::optional<VectorOut> parse_vector_out(const std::string& s) {
+    if (s == "gcode") return VectorOut::gcode;
+    if (s == "hpgl") return VectorOut::hpgl;
+    if (s == "svg") return VectorOut::svg;
+    if (s == "json") return VectorOut::json;
+    return std::nullopt;
+}
+
+// Cuts every chain under `profile`; the patent mode keeps the approximation
+// mode's read-out (end points only) and collects its deviation statistics.
+Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profile profile,
+                                        SegmenterKind kind, const std::string& source,
+                                        SegmentStats& stats) {
+    std::vector<SegmentedChain> out;
+    out.reserve(chains.size());
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const Chain& chain = chains[c];
+        const std::string where = source + ": chain " + std::to_string(c + 1) + ": ";
+        SegmentedChain sc;
+        sc.chain = chain;
+        auto r = segment_steps(chain.steps, chain.axes, profile, kind, sc.segments, &stats);
+        if (!r) return make_error(r.error().code, where + r.error().message);
+        if (kind == SegmenterKind::patent) {
+            std::vector<Point> ends;
+            auto a = patent_approximate(chain.steps, ends);
+            if (!a) return make_error(a.error().code, where + a.error().message);
+            sc.segments.clear();
+            for (const Point& e : ends) sc.segments.push_back(default_segment(profile, e, 2));
+        }
+        out.push_back(std::move(sc));
+    }
+    return out;
+}
+
+}  // namespace
+
+int cmd_segment(const std::vector<std::string>& args) {
+    po::options_description desc(
+        "Usage: stepzip segment [IN | -] --to gcode|hpgl|svg|json [OPTIONS]\n"
+        "Unit-step chains -> vectors by reverse interpolation.\n"
+        "Options");
+    std::string input, format_arg, segmenter_arg = "greedy", profile_arg, to_arg, out_arg,
+                                   step_arg;
+    desc.add_options()
+        ("help,h", "show this help")
+        ("to", po::value(&to_arg), "output: gcode, hpgl, svg or json (required)")
+        ("format", po::value(&format_arg),
+         "input chain format: freeman, points, steps (default: detected)")
+        ("segmenter", po::value(&segmenter_arg),
+         "greedy (default), optimal, or patent (SU 1089551 approximation mode: end points "
+         "only, its deviation reported)")
+        ("profile", po::value(&profile_arg),
+         "eval4, eval8, patent, grbl, marlin, or auto: the profile giving the fewest "
+         "segments (default: auto; patent under --segmenter patent)")
+        ("output,o", po::value(&out_arg), "output file (default: standard output)")
+        ("stdout,c", "write to standard output")
+        ("force,f", "overwrite an existing output")
+        ("relative", "G-code: incremental coordinates (G91)")
+        ("step-size", po::value(&step_arg), "G-code: write millimetres at this many mm per step")
+        ("quiet,q", "no notes on stderr");
+    po::options_description hidden;
+    hidden.add_options()("input", po::value(&input));
+    po::options_description all;
+    all.add(desc).add(hidden);
+    po::positional_options_description pos;
+    pos.add("input", 1);
+
+    po::variables_map vm;
+    try {
+        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
+                      .options(all)
+                      .positional(pos)
+                      .run(),
+                  vm);
+        po::notify(vm);
+    } catch (const po::error& e) {
+        return usage_error(std::string("segment: ") + e.what());
+    }
+    if (vm.count("help")) {
+        std::cout << desc << "\n";
+        return 0;
+    }
+    if (to_arg.empty()) return usage_error("segment: --to is required");
+    const auto to = parse_vector_out(to_arg);
+    if (!to) return usage_error("segment: unknown output '" + to_arg + "'");
+    const auto kind = parse_segmenter(segmenter_arg);
+    if (!kind) return usage_error("segment: unknown segmenter '" + segmenter_arg + "'");
+    if (profile_arg.empty()) profile_arg = *kind == SegmenterKind::patent ? "patent" : "auto";
+    std::optional<Profile> profile;
+    if (profile_arg != "auto") {
+        profile = parse_profile(profile_arg);
+        if (!profile) return usage_error("segment: unknown profile '" + profile_arg + "'");
+    }
+    std::optional<InputFormat> format;
+    if (!format_arg.empty()) {
+        format = parse_format(format_arg);
+        if (!format) return usage_error("segment: unknown input format '" + format_arg + "'");
+    }
+    GcodeWriteOptions gcode_options;
+    gcode_options.relative = vm.count("relative") > 0;
+    if (!step_arg.empty()) {
+        auto s = parse_step_size(step_arg);
+        if (!s) return usage_error("segment: " + s.error().message);
+        gcode_options.step_size = *s;
+    }
+    const bool quiet = vm.count("quiet") > 0;
+    const std::string out_path = vm.count("stdout") ? std::string("-") : out_arg;
+    const bool force = vm.count("force") > 0;
+
+    // Read the chains.
+    const std::string source = input_name(input);
+    auto data = read_input(input);
+    if (!data) return report(data.error());
+    if (!format) {
+        format = detect_format(std::string_view(*data).substr(0, 4096));
+        if (!format)
+            return report(make_error(Errc::syntax,
+                                     source + ": not a chain file (freeman, points or steps; "
+                                              "use --format)"));
+    }
+    auto chains = read_chains(*format, *data, source);
+    if (!chains) return report(chains.error());
+
+    // Cut them; "auto" keeps the profile with the fewest segments.
+    SegmentStats stats;
+    std::vector<SegmentedChain> cut_chains;
+    if (profile) {
+        auto r = cut(*chains, *profile, *kind, source, stats);
+        if (!r) return report(r.error());
+        cut_chains = std::move(*r);
+    } else {
+        std::optional<Error> first_error;
+        std::size_t best = 0;
+        for (Profile p : kAllProfiles) {
+            SegmentStats s;
+            auto r = cut(*chains, p, *kind, source, s);
+            if (!r) {
+                if (!first_error) first_error = r.error();
+                continue;
+            }
+            std::size_t n = 0;
+            for (const SegmentedChain& sc : *r) n += sc.segments.size();
+            if (!profile || n < best) {
+                profile = p;
+                best = n;
+                stats = s;
+                cut_chains = std::move(*r);
+            }
+        }
+        if (!profile) return report(*first_error);
+    }
+
+    CutInfo info;
+    info.profile = *profile;
+    info.segmenter = *kind;
+    info.exact = *kind != SegmenterKind::patent;
+    if (!info.exact) {
+        info.stats = stats;
+        if (!quiet)
+            note("patent approximation mode: " + std::to_string(stats.patent_segments) +
+                 " segment(s) read out, " + std::to_string(stats.patent_exact) +
+                 " reproduce their steps exactly, largest deviation " +
+                 std::to_string(stats.patent_max_deviation) +
+                 " step(s); the vectors are end-point exact only");
+    }
+
+    Result<std::string> text = std::string();
+    switch (*to) {
+        case VectorOut::gcode:
+        case VectorOut::hpgl: {
+            auto drawing = segments_to_drawing(cut_chains);
+            if (!drawing) return report(make_error(drawing.error().code,
+                                                   source + ": " + drawing.error().message));
+            text = *to == VectorOut::gcode ? Result<std::string>(write_gcode(*drawing, gcode_options))
+                                           : write_hpgl(*drawing);
+            break;
+        }
+        case VectorOut::svg: text = write_svg(cut_chains, info); break;
+        case VectorOut::json: text = write_json(cut_chains, info); break;
+    }
+    if (!text) return report(make_error(text.error().code, source + ": " + text.error().message));
+
+    auto out = OutputFile::open(out_path, force);
+    if (!out) return report(out.error());
+    if (auto r = out->write(*text); !r) return report(r.error());
+    if (auto r = out->commit(); !r) return report(r.error());
+    return 0;
 }
 
 }  // namespace stepzip::cli
