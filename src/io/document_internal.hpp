@@ -1,0 +1,164 @@
+// stepzip — internals shared by the chain-file readers and writers
+// (freeman_format.cpp, points_format.cpp, steps_format.cpp, document.cpp).
+//
+// Not installed; nothing here is part of the public API.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "stepzip/document.hpp"
+
+namespace stepzip::io {
+
+/// Coordinates in text files must lie in [-kCoordLimit, kCoordLimit]; then no
+/// sum or difference of two coordinates, and no chain of fewer than 2^62
+/// steps, can overflow an int64.
+inline constexpr std::int64_t kCoordLimit = std::int64_t{1} << 62;
+
+/// Longest run of spaces/tabs, or of leading zeros, accepted inside a chain
+/// line; longest buffered point line. Keeps a block's memory bounded.
+inline constexpr std::size_t kMaxFieldBytes = 4096;
+inline constexpr std::size_t kMaxLineBytes = 65536;
+
+/// A block is also cut once its layout holds this many bytes.
+inline std::size_t layout_cap(std::size_t block_steps) {
+    return block_steps < 256 ? 256 : block_steps;
+}
+
+// ---- layout byte code helpers ----------------------------------------------
+
+inline void put_varint(std::string& out, std::uint64_t v) {
+    while (v >= 0x80) {
+        out.push_back(static_cast<char>((v & 0x7F) | 0x80));
+        v >>= 7;
+    }
+    out.push_back(static_cast<char>(v));
+}
+
+inline void put_bytes(std::string& out, std::string_view bytes) {
+    put_varint(out, bytes.size());
+    out.append(bytes);
+}
+
+/// Reads a layout; every getter returns false at a truncated or malformed field.
+struct LayoutCursor {
+    const unsigned char* p;
+    const unsigned char* end;
+    explicit LayoutCursor(std::string_view s)
+        : p(reinterpret_cast<const unsigned char*>(s.data())), end(p + s.size()) {}
+    bool done() const { return p == end; }
+    bool byte(std::uint8_t& b) {
+        if (p == end) return false;
+        b = *p++;
+        return true;
+    }
+    bool varint(std::uint64_t& v) {
+        v = 0;
+        for (int shift = 0; shift < 64; shift += 7) {
+            if (p == end) return false;
+            const std::uint8_t b = *p++;
+            v |= std::uint64_t{b & 0x7Fu} << shift;
+            if ((b & 0x80) == 0) return shift < 63 || b <= 1;
+        }
+        return false;
+    }
+    bool bytes(std::string_view& s) {
+        std::uint64_t n = 0;
+        if (!varint(n) || n > static_cast<std::uint64_t>(end - p)) return false;
+        s = std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n));
+        p += n;
+        return true;
+    }
+};
+
+// ---- number spelling --------------------------------------------------------
+
+/// How a decimal integer was written, relative to its canonical spelling
+/// (no '+', no leading zeros, '-' only on negative values).
+struct Spelling {
+    std::uint8_t sign = 0;    ///< 0 canonical, 1 explicit '+', 2 '-' on zero
+    std::uint64_t zeros = 0;  ///< leading zeros beyond the canonical digits
+    bool canonical() const { return sign == 0 && zeros == 0; }
+};
+
+/// Appends `v` spelled as `sp`.
+void append_number(std::string& out, std::int64_t v, Spelling sp);
+/// Appends the canonical decimal spelling of `v`.
+void append_int(std::string& out, std::int64_t v);
+/// Layout field: sign byte then zero count.
+inline void put_spelling(std::string& out, Spelling sp) {
+    out.push_back(static_cast<char>(sp.sign));
+    put_varint(out, sp.zeros);
+}
+/// Reads a spelling field and checks that it fits `v`.
+bool get_spelling(LayoutCursor& c, std::int64_t v, Spelling& sp);
+
+/// Incremental decimal integer: sign then digits. Tracks the spelling.
+struct NumberAccum {
+    bool negative = false;
+    bool plus = false;
+    std::uint64_t digits = 0;     // digits seen
+    std::uint64_t magnitude = 0;  // value of the digits, saturated past the limit
+    bool too_big = false;
+    void reset() { *this = NumberAccum{}; }
+    void digit(unsigned d) {
+        ++digits;
+        if (too_big) return;
+        magnitude = magnitude * 10 + d;
+        if (magnitude > static_cast<std::uint64_t>(kCoordLimit)) too_big = true;
+    }
+    std::int64_t value() const {
+        const auto m = static_cast<std::int64_t>(magnitude);
+        return negative ? -m : m;
+    }
+    Spelling spelling() const;
+};
+
+/// "SOURCE:LINE:COLUMN: what".
+std::string at(const std::string& source, std::uint64_t line, std::uint64_t column,
+               std::string_view what);
+
+/// True for bytes a text format never accepts anywhere: NUL and the other C0
+/// controls except TAB, LF and CR, and DEL.
+inline bool is_binary_byte(unsigned char c) {
+    return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F;
+}
+
+/// "byte 0x07" or "'x'" for messages.
+std::string describe_byte(unsigned char c);
+
+// ---- per-format parser and renderer -------------------------------------------
+
+class FormatParser {
+public:
+    virtual ~FormatParser() = default;
+    virtual Result<void> feed(std::string_view data, bool last) = 0;
+    /// 1-based line number the parser has reached (for detect_format).
+    virtual std::uint64_t line() const { return 0; }
+    std::deque<Block> ready;
+};
+
+class FormatRenderer {
+public:
+    virtual ~FormatRenderer() = default;
+    virtual Result<void> write(const Block& block, std::string& out) = 0;
+};
+
+std::unique_ptr<FormatParser> make_freeman_parser(std::string source, std::size_t block_steps);
+std::unique_ptr<FormatParser> make_points_parser(std::string source, std::size_t block_steps);
+std::unique_ptr<FormatParser> make_steps_parser(std::string source, std::size_t block_steps);
+std::unique_ptr<FormatRenderer> make_freeman_renderer();
+std::unique_ptr<FormatRenderer> make_points_renderer();
+std::unique_ptr<FormatRenderer> make_steps_renderer();
+
+/// Error for a layout that does not fit its block.
+inline Error corrupt(std::string_view format, std::string_view what) {
+    return make_error(Errc::corrupt, std::string(format) + " layout: " + std::string(what));
+}
+
+}  // namespace stepzip::io

@@ -1,0 +1,630 @@
+// stepzip — the freeman chain format: one chain per line "X0 Y0 CODES",
+// '#' comments. Reader and writer; the layout byte code is described in
+// docs/formats.md.
+//
+// The reader is a byte-driven state machine that never buffers more than one
+// line head (bounded by kMaxFieldBytes per field); codes go straight into
+// the block's chain in a tight loop. Complexity: O(1) per input byte.
+#include <algorithm>
+
+#include "document_internal.hpp"
+
+namespace stepzip::io {
+namespace {
+
+constexpr Step kCodeStep[8] = {0x01, 0x05, 0x04, 0x07, 0x03, 0x0F, 0x0C, 0x0D};
+// Two-axis step (0..15) to its Freeman digit, 0 when it has none.
+constexpr char kStepCode[16] = {0,   '0', 0, '4', '2', '1', 0, '3',
+                                0,   0,   0, 0,   '6', '7', 0, '5'};
+
+// Layout operations.
+enum : std::uint8_t {
+    kNop = 0,        // nothing
+    kCanonLf = 1,    // varint n: n whole canonical lines ending in LF
+    kCanonCrlf = 2,  // varint n: the same ending in CR LF
+    kVerbatim = 3,   // bytes: copied as they are
+    kHead = 4,       // flags, fields: a line head, then the next chain's codes
+};
+// kHead flags: which fields differ from the canonical head "X Y " (in order).
+enum : std::uint8_t { kLead = 1, kX = 2, kWs1 = 4, kY = 8, kWs2 = 16 };
+
+bool is_ws(unsigned char c) { return c == ' ' || c == '\t'; }
+bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
+
+class LayoutBuilder {
+public:
+    void run(std::uint8_t op) {
+        flush_verbatim();
+        if (run_n_ != 0 && run_op_ != op) flush_run();
+        run_op_ = op;
+        ++run_n_;
+    }
+    void verbatim(std::string_view s) {
+        if (s.empty()) return;
+        flush_run();
+        verb_.append(s);
+    }
+    std::string& ops() {
+        flush_run();
+        flush_verbatim();
+        return out_;
+    }
+    std::size_t size() const { return out_.size() + verb_.size(); }
+    std::string take() {
+        ops();
+        std::string s = std::move(out_);
+        out_.clear();
+        return s;
+    }
+
+private:
+    void flush_run() {
+        if (run_n_ == 0) return;
+        out_.push_back(static_cast<char>(run_op_));
+        put_varint(out_, run_n_);
+        run_n_ = 0;
+    }
+    void flush_verbatim() {
+        if (verb_.empty()) return;
+        out_.push_back(static_cast<char>(kVerbatim));
+        put_bytes(out_, verb_);
+        verb_.clear();
+    }
+    std::string out_;
+    std::string verb_;
+    std::uint8_t run_op_ = 0;
+    std::uint64_t run_n_ = 0;
+};
+
+class FreemanParser final : public FormatParser {
+public:
+    FreemanParser(std::string source, std::size_t block_steps)
+        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {}
+
+    Result<void> feed(std::string_view data, bool last) override;
+    std::uint64_t line() const override { return line_; }
+
+private:
+    enum class St : std::uint8_t { lead, x_sign, x_dig, ws1, y_sign, y_dig, ws2, codes, tail, cr, comment };
+
+    bool byte(unsigned char c);
+    const unsigned char* run_codes(const unsigned char* p, const unsigned char* end);
+    const unsigned char* run_comment(const unsigned char* p, const unsigned char* end);
+    bool finish();
+
+    bool fail(Errc code, std::uint64_t column, std::string_view what) {
+        err_ = make_error(code, at(source_, line_, column, what));
+        failed_ = true;
+        return false;
+    }
+    bool add_ws(std::string& field, unsigned char c) {
+        if (field.size() >= kMaxFieldBytes)
+            return fail(Errc::limit, col_, "more than 4096 spaces or tabs in a row in a chain line");
+        field.push_back(static_cast<char>(c));
+        return true;
+    }
+    bool add_digit(NumberAccum& n, unsigned char c) {
+        if (n.digits >= kMaxFieldBytes)
+            return fail(Errc::limit, col_, "a coordinate longer than 4096 digits");
+        n.digit(c - '0');
+        return true;
+    }
+    bool end_number(const NumberAccum& n, std::uint64_t column) {
+        if (n.too_big)
+            return fail(Errc::overflow, column, "coordinate out of range (limit is +-2^62)");
+        return true;
+    }
+    void start_chain() {
+        Chain c;
+        c.axes = 2;
+        c.start[0] = x_.value();
+        c.start[1] = y_.value();
+        blk_.chains.push_back(std::move(c));
+        head_emitted_ = false;
+        line_codes_ = 0;
+    }
+    bool head_canonical() const {
+        return lead_.empty() && x_.spelling().canonical() && ws1_ == " " &&
+               y_.spelling().canonical() && (line_codes_ == 0 || ws2_ == " ");
+    }
+    void emit_head();
+    void end_chain_line(int term);
+    void end_line_checks(int term) {
+        lead_.clear();
+        ws1_.clear();
+        ws2_.clear();
+        tail_.clear();
+        st_ = St::lead;
+        if (term != 0 && full()) cut(false);
+    }
+    bool full() const { return blk_steps_ >= block_steps_ || lb_.size() >= cap_; }
+    void cut(bool open);
+
+    std::string source_;
+    std::size_t block_steps_;
+    std::size_t cap_;
+    std::uint64_t line_ = 1;
+    std::uint64_t col_ = 1;  // column of the byte being read
+    St st_ = St::lead;
+    bool cr_in_chain_ = false;
+    std::uint64_t cr_col_ = 0;
+    std::uint64_t x_col_ = 0, y_col_ = 0;
+    NumberAccum x_, y_;
+    std::string lead_, ws1_, ws2_, tail_;
+    bool head_emitted_ = false;
+    std::uint64_t line_codes_ = 0;
+
+    Block blk_;
+    std::size_t blk_steps_ = 0;
+    LayoutBuilder lb_;
+    bool emitted_ = false;
+    bool failed_ = false;
+    bool finished_ = false;
+    Error err_;
+};
+
+void FreemanParser::emit_head() {
+    std::string& o = lb_.ops();
+    std::uint8_t flags = 0;
+    const Spelling xs = x_.spelling(), ys = y_.spelling();
+    if (!lead_.empty()) flags |= kLead;
+    if (!xs.canonical()) flags |= kX;
+    if (ws1_ != " ") flags |= kWs1;
+    if (!ys.canonical()) flags |= kY;
+    if (line_codes_ != 0 && ws2_ != " ") flags |= kWs2;
+    o.push_back(static_cast<char>(kHead));
+    o.push_back(static_cast<char>(flags));
+    if (flags & kLead) put_bytes(o, lead_);
+    if (flags & kX) put_spelling(o, xs);
+    if (flags & kWs1) put_bytes(o, ws1_);
+    if (flags & kY) put_spelling(o, ys);
+    if (flags & kWs2) put_bytes(o, ws2_);
+    head_emitted_ = true;
+}
+
+// term: 0 none (end of input), 1 LF, 2 CR LF.
+void FreemanParser::end_chain_line(int term) {
+    const std::string_view t = term == 1 ? "\n" : term == 2 ? "\r\n" : "";
+    if (head_emitted_) {
+        lb_.verbatim(tail_);
+        lb_.verbatim(t);
+    } else if (term != 0 && tail_.empty() && head_canonical()) {
+        lb_.run(term == 1 ? kCanonLf : kCanonCrlf);
+    } else {
+        emit_head();
+        lb_.verbatim(tail_);
+        lb_.verbatim(t);
+    }
+    head_emitted_ = false;
+    end_line_checks(term);
+}
+
+void FreemanParser::cut(bool open) {
+    if (open && !head_emitted_) emit_head();
+    Block b = std::move(blk_);
+    b.axes = 2;
+    b.open = open;
+    b.layout = lb_.take();
+    if (b.layout.empty()) b.layout.push_back(static_cast<char>(kNop));
+    Point end{};
+    if (open) end = b.chains.back().end();
+    ready.push_back(std::move(b));
+    emitted_ = true;
+    blk_ = Block{};
+    blk_.axes = 2;
+    blk_steps_ = 0;
+    if (open) {
+        blk_.continues = true;
+        Chain c;
+        c.axes = 2;
+        c.start = end;
+        blk_.chains.push_back(std::move(c));
+    }
+}
+
+const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsigned char* end) {
+    while (p < end) {
+        if (static_cast<unsigned>(*p - '0') > 7u) return p;
+        if (blk_steps_ >= block_steps_) cut(true);
+        std::vector<Step>& steps = blk_.chains.back().steps;
+        const std::size_t room = block_steps_ - blk_steps_;
+        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
+        const unsigned char* q = p;
+        while (q < lim) {
+            const unsigned d = static_cast<unsigned>(*q - '0');
+            if (d > 7u) break;
+            steps.push_back(kCodeStep[d]);
+            ++q;
+        }
+        const auto k = static_cast<std::size_t>(q - p);
+        blk_steps_ += k;
+        col_ += k;
+        line_codes_ += k;
+        p = q;
+    }
+    return p;
+}
+
+const unsigned char* FreemanParser::run_comment(const unsigned char* p, const unsigned char* end) {
+    while (p < end) {
+        if (lb_.size() >= cap_) cut(false);
+        const std::size_t room = cap_ - lb_.size();
+        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
+        const unsigned char* q = p;
+        while (q < lim && *q != '\n' && !is_binary_byte(*q)) ++q;
+        lb_.verbatim(std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(q - p)));
+        col_ += static_cast<std::uint64_t>(q - p);
+        p = q;
+        if (q == lim) continue;
+        if (*q == '\n') {
+            lb_.verbatim("\n");
+            ++line_;
+            col_ = 1;
+            st_ = St::lead;
+            if (full()) cut(false);
+            return p + 1;
+        }
+        fail(Errc::syntax, col_, describe_byte(*q) + " in a comment (text formats hold no binary bytes)");
+        return nullptr;
+    }
+    return p;
+}
+
+bool FreemanParser::byte(unsigned char c) {
+    switch (st_) {
+        case St::lead:
+            if (is_ws(c)) return add_ws(lead_, c);
+            if (c == '#') {
+                lb_.verbatim(lead_);
+                lb_.verbatim("#");
+                lead_.clear();
+                st_ = St::comment;
+                return true;
+            }
+            if (c == '+' || c == '-' || is_digit(c)) {
+                x_.reset();
+                x_col_ = col_;
+                if (c == '+') x_.plus = true;
+                if (c == '-') x_.negative = true;
+                if (is_digit(c)) x_.digit(c - '0');
+                st_ = is_digit(c) ? St::x_dig : St::x_sign;
+                return true;
+            }
+            if (c == '\r') {
+                cr_col_ = col_;
+                cr_in_chain_ = false;
+                st_ = St::cr;
+                return true;
+            }
+            if (c == '\n') {
+                lb_.verbatim(lead_);
+                lb_.verbatim("\n");
+                end_line_checks(1);
+                return true;
+            }
+            return fail(Errc::syntax, col_,
+                        "expected a chain line \"X0 Y0 CODES\" or a '#' comment, found " +
+                            describe_byte(c));
+        case St::x_sign:
+        case St::y_sign:
+            if (is_digit(c)) {
+                NumberAccum& n = st_ == St::x_sign ? x_ : y_;
+                n.digit(c - '0');
+                st_ = st_ == St::x_sign ? St::x_dig : St::y_dig;
+                return true;
+            }
+            return fail(Errc::syntax, col_, "expected a digit after the sign, found " + describe_byte(c));
+        case St::x_dig:
+            if (is_digit(c)) return add_digit(x_, c);
+            if (is_ws(c)) {
+                if (!end_number(x_, x_col_)) return false;
+                ws1_.assign(1, static_cast<char>(c));
+                st_ = St::ws1;
+                return true;
+            }
+            if (c == '\n' || c == '\r')
+                return fail(Errc::syntax, col_, "the line ends after X0; expected \"X0 Y0 CODES\"");
+            return fail(Errc::syntax, col_, "expected a digit or a space after X0, found " + describe_byte(c));
+        case St::ws1:
+            if (is_ws(c)) return add_ws(ws1_, c);
+            if (c == '+' || c == '-' || is_digit(c)) {
+                y_.reset();
+                y_col_ = col_;
+                if (c == '+') y_.plus = true;
+                if (c == '-') y_.negative = true;
+                if (is_digit(c)) y_.digit(c - '0');
+                st_ = is_digit(c) ? St::y_dig : St::y_sign;
+                return true;
+            }
+            if (c == '\n' || c == '\r')
+                return fail(Errc::syntax, col_, "the line ends after X0; expected \"X0 Y0 CODES\"");
+            return fail(Errc::syntax, col_, "expected the start point's Y0, found " + describe_byte(c));
+        case St::y_dig:
+            if (is_digit(c)) return add_digit(y_, c);
+            if (!end_number(y_, y_col_)) return false;
+            if (is_ws(c)) {
+                ws2_.assign(1, static_cast<char>(c));
+                st_ = St::ws2;
+                return true;
+            }
+            if (c == '\r' || c == '\n') {
+                start_chain();
+                if (c == '\n') {
+                    end_chain_line(1);
+                } else {
+                    cr_col_ = col_;
+                    cr_in_chain_ = true;
+                    st_ = St::cr;
+                }
+                return true;
+            }
+            return fail(Errc::syntax, col_,
+                        "expected a space and the Freeman codes after Y0, found " + describe_byte(c));
+        case St::ws2:
+            if (is_ws(c)) return add_ws(ws2_, c);
+            if (c == '8' || c == '9')
+                return fail(Errc::syntax, col_, describe_byte(c) + " is not a Freeman code 0-7");
+            if (c == '\r' || c == '\n') {
+                start_chain();
+                tail_ = std::move(ws2_);
+                ws2_.clear();
+                if (c == '\n') {
+                    end_chain_line(1);
+                } else {
+                    cr_col_ = col_;
+                    cr_in_chain_ = true;
+                    st_ = St::cr;
+                }
+                return true;
+            }
+            return fail(Errc::syntax, col_, "expected Freeman codes 0-7, found " + describe_byte(c));
+        case St::codes:
+            if (c == '8' || c == '9')
+                return fail(Errc::syntax, col_, describe_byte(c) + " is not a Freeman code 0-7");
+            if (is_ws(c)) {
+                tail_.assign(1, static_cast<char>(c));
+                st_ = St::tail;
+                return true;
+            }
+            [[fallthrough]];
+        case St::tail:
+            if (is_ws(c)) return add_ws(tail_, c);
+            if (c == '\n') {
+                end_chain_line(1);
+                return true;
+            }
+            if (c == '\r') {
+                cr_col_ = col_;
+                cr_in_chain_ = true;
+                st_ = St::cr;
+                return true;
+            }
+            return fail(Errc::syntax, col_,
+                        (st_ == St::codes ? "expected a Freeman code 0-7, found "
+                                          : "unexpected text after the codes: ") +
+                            describe_byte(c));
+        case St::cr:
+            if (c != '\n')
+                return fail(Errc::syntax, cr_col_, "a carriage return not followed by a line feed");
+            if (cr_in_chain_) {
+                end_chain_line(2);
+            } else {
+                lb_.verbatim(lead_);
+                lb_.verbatim("\r\n");
+                end_line_checks(2);
+            }
+            return true;
+        case St::comment:
+            break;
+    }
+    return true;
+}
+
+bool FreemanParser::finish() {
+    switch (st_) {
+        case St::lead:
+            lb_.verbatim(lead_);
+            lead_.clear();
+            break;
+        case St::x_sign:
+        case St::x_dig:
+        case St::ws1:
+        case St::y_sign:
+            return fail(Errc::syntax, col_, "the input ends inside a chain line; expected \"X0 Y0 CODES\"");
+        case St::y_dig:
+            if (!end_number(y_, y_col_)) return false;
+            start_chain();
+            end_chain_line(0);
+            break;
+        case St::ws2:
+            start_chain();
+            tail_ = std::move(ws2_);
+            ws2_.clear();
+            end_chain_line(0);
+            break;
+        case St::codes:
+        case St::tail:
+            end_chain_line(0);
+            break;
+        case St::cr:
+            return fail(Errc::syntax, cr_col_, "a carriage return not followed by a line feed");
+        case St::comment:
+            break;
+    }
+    if (!blk_.chains.empty() || lb_.size() != 0 || !emitted_) {
+        Block b = std::move(blk_);
+        b.axes = 2;
+        b.open = false;
+        b.layout = lb_.take();
+        if (b.layout.empty() && !b.chains.empty()) b.layout.push_back(static_cast<char>(kNop));
+        ready.push_back(std::move(b));
+        emitted_ = true;
+        blk_ = Block{};
+    }
+    return true;
+}
+
+Result<void> FreemanParser::feed(std::string_view data, bool last) {
+    if (failed_) return err_;
+    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
+    const auto* end = p + data.size();
+    while (p < end) {
+        if (st_ == St::codes) {
+            p = run_codes(p, end);
+            if (p == end) break;
+        } else if (st_ == St::comment) {
+            p = run_comment(p, end);
+            if (p == nullptr) return err_;
+            continue;
+        } else if (st_ == St::ws2 && static_cast<unsigned>(*p - '0') <= 7u) {
+            start_chain();
+            st_ = St::codes;
+            continue;
+        }
+        const unsigned char c = *p++;
+        if (is_binary_byte(c))
+            return fail(Errc::syntax, col_, describe_byte(c) + " (text formats hold no binary bytes)"),
+                   err_;
+        if (!byte(c)) return err_;
+        if (c == '\n') {
+            ++line_;
+            col_ = 1;
+        } else {
+            ++col_;
+        }
+    }
+    if (last) {
+        finished_ = true;
+        if (!finish()) return err_;
+    }
+    return {};
+}
+
+// ---- writer ----------------------------------------------------------------------
+
+class FreemanRenderer final : public FormatRenderer {
+public:
+    Result<void> write(const Block& block, std::string& out) override;
+};
+
+bool append_codes(std::string& out, const Chain& c) {
+    const std::size_t n = out.size();
+    out.resize(n + c.steps.size());
+    char* w = out.data() + n;
+    for (const Step s : c.steps) {
+        const char d = s < 16 ? kStepCode[s] : 0;
+        if (d == 0) return false;
+        *w++ = d;
+    }
+    return true;
+}
+
+void append_canonical_head(std::string& out, const Chain& c) {
+    append_int(out, c.start[0]);
+    out.push_back(' ');
+    append_int(out, c.start[1]);
+    if (!c.steps.empty()) out.push_back(' ');
+}
+
+Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
+    const auto& ch = b.chains;
+    const std::size_t n = ch.size();
+    for (const Chain& c : ch)
+        if (c.axes != 2) return corrupt("freeman", "a chain that is not two-axis");
+    std::size_t i = 0;
+    if (b.continues) {
+        if (n == 0) return corrupt("freeman", "a continued block without chains");
+        if (!append_codes(out, ch[0])) return corrupt("freeman", "a step without a Freeman code");
+        i = 1;
+    }
+    if (b.layout.empty()) {  // canonical rendering
+        if (b.continues && !(b.open && n == 1)) out.push_back('\n');
+        for (; i < n; ++i) {
+            append_canonical_head(out, ch[i]);
+            if (!append_codes(out, ch[i])) return corrupt("freeman", "a step without a Freeman code");
+            if (!(b.open && i + 1 == n)) out.push_back('\n');
+        }
+        return {};
+    }
+    LayoutCursor cur(b.layout);
+    while (!cur.done()) {
+        std::uint8_t op = 0;
+        cur.byte(op);
+        switch (op) {
+            case kNop:
+                break;
+            case kCanonLf:
+            case kCanonCrlf: {
+                std::uint64_t k = 0;
+                if (!cur.varint(k) || k > n - i || (b.open && k == n - i))
+                    return corrupt("freeman", "a run of lines past the block's chains");
+                for (std::uint64_t j = 0; j < k; ++j, ++i) {
+                    append_canonical_head(out, ch[i]);
+                    if (!append_codes(out, ch[i]))
+                        return corrupt("freeman", "a step without a Freeman code");
+                    out.append(op == kCanonLf ? "\n" : "\r\n");
+                }
+                break;
+            }
+            case kVerbatim: {
+                std::string_view s;
+                if (!cur.bytes(s)) return corrupt("freeman", "truncated verbatim bytes");
+                out.append(s);
+                break;
+            }
+            case kHead: {
+                std::uint8_t flags = 0;
+                if (!cur.byte(flags) || (flags & ~0x1Fu) != 0 || i >= n)
+                    return corrupt("freeman", "a bad line head");
+                const Chain& c = ch[i++];
+                std::string_view ws;
+                Spelling sp;
+                if (flags & kLead) {
+                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    out.append(ws);
+                }
+                if (flags & kX) {
+                    if (!get_spelling(cur, c.start[0], sp)) return corrupt("freeman", "a bad spelling");
+                    append_number(out, c.start[0], sp);
+                } else {
+                    append_int(out, c.start[0]);
+                }
+                if (flags & kWs1) {
+                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    out.append(ws);
+                } else {
+                    out.push_back(' ');
+                }
+                if (flags & kY) {
+                    if (!get_spelling(cur, c.start[1], sp)) return corrupt("freeman", "a bad spelling");
+                    append_number(out, c.start[1], sp);
+                } else {
+                    append_int(out, c.start[1]);
+                }
+                if (flags & kWs2) {
+                    if (c.steps.empty() || !cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    out.append(ws);
+                } else if (!c.steps.empty()) {
+                    out.push_back(' ');
+                }
+                if (!append_codes(out, c)) return corrupt("freeman", "a step without a Freeman code");
+                break;
+            }
+            default:
+                return corrupt("freeman", "an unknown operation");
+        }
+    }
+    if (i != n) return corrupt("freeman", "chains left over after the layout");
+    return {};
+}
+
+}  // namespace
+
+std::unique_ptr<FormatParser> make_freeman_parser(std::string source, std::size_t block_steps) {
+    return std::make_unique<FreemanParser>(std::move(source), block_steps);
+}
+
+std::unique_ptr<FormatRenderer> make_freeman_renderer() { return std::make_unique<FreemanRenderer>(); }
+
+}  // namespace stepzip::io

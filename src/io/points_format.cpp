@@ -1,0 +1,597 @@
+// stepzip — the points chain format: one point per line ("x y", "x,y", 2 to
+// 6 columns), a blank line ends a chain, '#' comments. Reader and writer; the
+// layout byte code is described in docs/formats.md.
+//
+// The reader buffers one line at a time (at most kMaxLineBytes; comments are
+// streamed) and checks that consecutive points differ by one unit step.
+// Complexity: O(1) per input byte.
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
+
+#include "document_internal.hpp"
+
+namespace stepzip::io {
+namespace {
+
+// Layout operations.
+enum : std::uint8_t {
+    kNop = 0,       // nothing
+    kLines = 1,     // varint n: n point lines in the current style
+    kChains = 2,    // varint n: n whole chains in the current style, each followed by a blank line
+    kVerbatim = 3,  // bytes: copied as they are
+    kPoint = 4,     // flags, fields: one point line that is not in the current style
+    kStyle = 5,     // style byte: the current style from here on (each block starts with 0)
+};
+// kPoint flags: which parts are given instead of following the style.
+enum : std::uint8_t { kLead = 1, kSpell = 2, kGaps = 4, kTail = 8 };
+
+// A style byte: separator code in bits 0-3, bit 4 set for CR LF line ends.
+constexpr std::string_view kSeparators[4] = {" ", ",", ", ", "\t"};
+constexpr std::uint8_t kCrlf = 0x10;
+
+std::string_view style_sep(std::uint8_t style) { return kSeparators[style & 3]; }
+std::string_view style_eol(std::uint8_t style) { return (style & kCrlf) ? "\r\n" : "\n"; }
+
+bool is_ws(unsigned char c) { return c == ' ' || c == '\t'; }
+bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
+
+class PointsLayout {
+public:
+    std::uint8_t style() const { return style_; }
+    void set_style(std::uint8_t s) {
+        if (s == style_) return;
+        ops().push_back(static_cast<char>(kStyle));
+        out_.push_back(static_cast<char>(s));
+        style_ = s;
+    }
+    void canonical_line(bool chain_first) {
+        flush_verbatim();
+        if (chain_first) clean_ = lines_ == 0;
+        ++lines_;
+    }
+    /// A blank line that ends a chain.
+    void chain_end(std::string_view bytes) {
+        if (clean_ && bytes == style_eol(style_)) {
+            ++chains_;
+            lines_ = 0;
+            clean_ = false;
+        } else {
+            verbatim(bytes);
+        }
+    }
+    void verbatim(std::string_view s) {
+        if (s.empty()) return;
+        flush_runs();
+        verb_.append(s);
+    }
+    std::string& ops() {
+        flush_runs();
+        flush_verbatim();
+        return out_;
+    }
+    std::size_t size() const { return out_.size() + verb_.size(); }
+    std::string take() {
+        ops();
+        std::string s = std::move(out_);
+        out_.clear();
+        style_ = 0;
+        return s;
+    }
+
+private:
+    void flush_runs() {
+        if (chains_ != 0) {
+            out_.push_back(static_cast<char>(kChains));
+            put_varint(out_, chains_);
+            chains_ = 0;
+        }
+        if (lines_ != 0) {
+            out_.push_back(static_cast<char>(kLines));
+            put_varint(out_, lines_);
+            lines_ = 0;
+        }
+        clean_ = false;
+    }
+    void flush_verbatim() {
+        if (verb_.empty()) return;
+        out_.push_back(static_cast<char>(kVerbatim));
+        put_bytes(out_, verb_);
+        verb_.clear();
+    }
+    std::string out_, verb_;
+    std::uint64_t chains_ = 0, lines_ = 0;
+    bool clean_ = false;  // the current chain's lines are all in `lines_`
+    std::uint8_t style_ = 0;
+};
+
+struct ParsedLine {
+    std::string_view lead, trailing;
+    int count = 0;
+    std::int64_t value[kMaxAxes]{};
+    Spelling spell[kMaxAxes];
+    std::size_t col[kMaxAxes]{};  // 1-based column of each coordinate
+    std::string_view gap[kMaxAxes];
+    std::size_t end_col = 0;  // column just past the last coordinate
+};
+
+class PointsParser final : public FormatParser {
+public:
+    PointsParser(std::string source, std::size_t block_steps)
+        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {}
+
+    Result<void> feed(std::string_view data, bool last) override;
+    std::uint64_t line() const override { return line_; }
+
+private:
+    bool fail(Errc code, std::uint64_t column, std::string_view what) {
+        err_ = make_error(code, at(source_, line_, column, what));
+        failed_ = true;
+        return false;
+    }
+    bool line_done(int term);
+    bool parse(std::string_view s, ParsedLine& pl);
+    bool point_line(const ParsedLine& pl, int term);
+    const unsigned char* run_comment(const unsigned char* p, const unsigned char* end);
+    bool full() const { return blk_steps_ >= block_steps_ || lb_.size() >= cap_; }
+    void cut(bool open);
+    void emit_last();
+
+    std::string source_;
+    std::size_t block_steps_;
+    std::size_t cap_;
+    std::uint64_t line_ = 1;
+    std::uint64_t col_ = 1;
+    bool in_comment_ = false;
+    bool ws_only_ = true;  // buf_ holds spaces and tabs only
+    std::string buf_;
+    int axes_ = 0;  // column count of the file, 0 before the first point
+    bool in_chain_ = false;
+    Point prev_{};
+
+    Block blk_;
+    std::size_t blk_steps_ = 0;
+    PointsLayout lb_;
+    bool emitted_ = false;
+    bool failed_ = false;
+    bool finished_ = false;
+    Error err_;
+};
+
+void PointsParser::cut(bool open) {
+    Block b = std::move(blk_);
+    b.axes = axes_ != 0 ? axes_ : 2;
+    b.open = open;
+    b.layout = lb_.take();
+    if (b.layout.empty()) b.layout.push_back(static_cast<char>(kNop));
+    ready.push_back(std::move(b));
+    emitted_ = true;
+    blk_ = Block{};
+    blk_.axes = axes_ != 0 ? axes_ : 2;
+    blk_steps_ = 0;
+    if (open) {
+        blk_.continues = true;
+        Chain c;
+        c.axes = axes_;
+        c.start = prev_;
+        blk_.chains.push_back(std::move(c));
+    }
+}
+
+bool PointsParser::parse(std::string_view s, ParsedLine& pl) {
+    const std::size_t len = s.size();
+    std::size_t pos = 0;
+    while (pos < len && is_ws(s[pos])) ++pos;
+    pl.lead = s.substr(0, pos);
+    pl.count = 0;
+    for (;;) {
+        const std::size_t start = pos;
+        NumberAccum n;
+        if (pos < len && (s[pos] == '+' || s[pos] == '-')) {
+            n.plus = s[pos] == '+';
+            n.negative = s[pos] == '-';
+            ++pos;
+        }
+        if (pos >= len || !is_digit(s[pos])) {
+            const std::string found =
+                pos >= len ? std::string("the end of the line") : describe_byte(s[pos]);
+            return fail(Errc::syntax, pos + 1,
+                        (pl.count == 0 ? "expected a point \"x y\" or \"x,y\", found "
+                                       : "expected a coordinate, found ") + found);
+        }
+        while (pos < len && is_digit(s[pos])) {
+            if (n.digits >= kMaxFieldBytes)
+                return fail(Errc::limit, pos + 1, "a coordinate longer than 4096 digits");
+            n.digit(s[pos] - '0');
+            ++pos;
+        }
+        if (n.too_big) return fail(Errc::overflow, start + 1, "coordinate out of range (limit is +-2^62)");
+        if (pl.count == kMaxAxes)
+            return fail(Errc::syntax, start + 1, "a point has at most 6 coordinates");
+        pl.value[pl.count] = n.value();
+        pl.spell[pl.count] = n.spelling();
+        pl.col[pl.count] = start + 1;
+        ++pl.count;
+        const std::size_t gap_start = pos;
+        while (pos < len && is_ws(s[pos])) ++pos;
+        if (pos < len && s[pos] == ',') {
+            ++pos;
+            while (pos < len && is_ws(s[pos])) ++pos;
+            pl.gap[pl.count - 1] = s.substr(gap_start, pos - gap_start);
+            continue;
+        }
+        if (pos == len) {
+            pl.trailing = s.substr(gap_start);
+            pl.end_col = gap_start + 1;
+            break;
+        }
+        if (pos > gap_start && (is_digit(s[pos]) || s[pos] == '+' || s[pos] == '-')) {
+            pl.gap[pl.count - 1] = s.substr(gap_start, pos - gap_start);
+            continue;
+        }
+        if (s[pos] == '\r') return fail(Errc::syntax, pos + 1, "a carriage return not followed by a line feed");
+        return fail(Errc::syntax, pos + 1,
+                    "expected a space, ',' or the end of the line, found " + describe_byte(s[pos]));
+    }
+    if (pl.count < 2)
+        return fail(Errc::syntax, pl.end_col, "a point needs at least two coordinates");
+    return true;
+}
+
+bool PointsParser::point_line(const ParsedLine& pl, int term) {
+    if (axes_ == 0) axes_ = pl.count;
+    if (pl.count != axes_) {
+        const std::size_t c = pl.count > axes_ ? pl.col[axes_] : pl.end_col;
+        return fail(Errc::syntax, c,
+                    "this point has " + std::to_string(pl.count) + " coordinates; the file's first "
+                    "point has " + std::to_string(axes_));
+    }
+    Point pt{};
+    for (int a = 0; a < axes_; ++a) pt[a] = pl.value[a];
+    const bool first = !in_chain_;
+    if (first) {
+        Chain c;
+        c.axes = axes_;
+        c.start = pt;
+        blk_.chains.push_back(std::move(c));
+        in_chain_ = true;
+    } else {
+        int d[kMaxAxes] = {};
+        bool moved = false;
+        for (int a = 0; a < axes_; ++a) {
+            const std::int64_t diff = pt[a] - prev_[a];
+            if (diff < -1 || diff > 1)
+                return fail(Errc::not_a_step, pl.col[a],
+                            "coordinate " + std::to_string(a + 1) + " moves by " + std::to_string(diff) +
+                                " from the previous point; consecutive points must differ by one step");
+            d[a] = static_cast<int>(diff);
+            moved = moved || diff != 0;
+        }
+        if (!moved)
+            return fail(Errc::not_a_step, pl.col[0],
+                        "the point repeats the previous one; consecutive points must differ by one step");
+        if (full()) cut(true);
+        blk_.chains.back().steps.push_back(make_step(d, axes_));
+        ++blk_steps_;
+    }
+    prev_ = pt;
+
+    // Layout: a line in one of the standard styles, or a kPoint record.
+    bool canon = pl.lead.empty() && pl.trailing.empty() && term != 0;
+    for (int a = 0; canon && a < pl.count; ++a) canon = pl.spell[a].canonical();
+    int sep = -1;
+    for (int k = 0; canon && k < 4; ++k)
+        if (pl.gap[0] == kSeparators[k]) sep = k;
+    for (int a = 1; canon && a + 1 < pl.count; ++a) canon = pl.gap[a] == pl.gap[0];
+    if (canon && sep >= 0) {
+        lb_.set_style(static_cast<std::uint8_t>(sep | (term == 2 ? kCrlf : 0)));
+        lb_.canonical_line(first);
+        return true;
+    }
+    const std::uint8_t style = lb_.style();
+    std::uint8_t flags = 0;
+    if (!pl.lead.empty()) flags |= kLead;
+    for (int a = 0; a < pl.count; ++a)
+        if (!pl.spell[a].canonical()) flags |= kSpell;
+    for (int a = 0; a + 1 < pl.count; ++a)
+        if (pl.gap[a] != style_sep(style)) flags |= kGaps;
+    std::string tail(pl.trailing);
+    tail += term == 1 ? "\n" : term == 2 ? "\r\n" : "";
+    if (tail != style_eol(style)) flags |= kTail;
+    std::string& o = lb_.ops();
+    o.push_back(static_cast<char>(kPoint));
+    o.push_back(static_cast<char>(flags));
+    if (flags & kLead) put_bytes(o, pl.lead);
+    if (flags & kSpell)
+        for (int a = 0; a < pl.count; ++a) put_spelling(o, pl.spell[a]);
+    if (flags & kGaps)
+        for (int a = 0; a + 1 < pl.count; ++a) put_bytes(o, pl.gap[a]);
+    if (flags & kTail) put_bytes(o, tail);
+    return true;
+}
+
+// A whole line is in buf_ (without its LF); term: 0 end of input, 1 LF.
+bool PointsParser::line_done(int term) {
+    std::string_view s = buf_;
+    if (term == 1 && !s.empty() && s.back() == '\r') {
+        s.remove_suffix(1);
+        term = 2;
+    }
+    const std::string_view eol = term == 1 ? "\n" : term == 2 ? "\r\n" : "";
+    std::size_t pos = 0;
+    while (pos < s.size() && is_ws(s[pos])) ++pos;
+    if (pos == s.size()) {  // blank line
+        std::string bytes(s);
+        bytes += eol;
+        if (in_chain_) {
+            in_chain_ = false;
+            lb_.chain_end(bytes);
+        } else {
+            lb_.verbatim(bytes);
+        }
+        if (term != 0 && full()) cut(false);
+        buf_.clear();
+        return true;
+    }
+    ParsedLine pl;
+    if (!parse(s, pl)) return false;
+    if (!point_line(pl, term)) return false;
+    buf_.clear();
+    return true;
+}
+
+const unsigned char* PointsParser::run_comment(const unsigned char* p, const unsigned char* end) {
+    while (p < end) {
+        if (lb_.size() >= cap_) cut(in_chain_);
+        const std::size_t room = cap_ - lb_.size();
+        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
+        const unsigned char* q = p;
+        while (q < lim && *q != '\n' && !is_binary_byte(*q)) ++q;
+        lb_.verbatim(std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(q - p)));
+        col_ += static_cast<std::uint64_t>(q - p);
+        p = q;
+        if (q == lim) continue;
+        if (*q == '\n') {
+            lb_.verbatim("\n");
+            ++line_;
+            col_ = 1;
+            in_comment_ = false;
+            if (!in_chain_ && full()) cut(false);
+            return p + 1;
+        }
+        fail(Errc::syntax, col_, describe_byte(*q) + " in a comment (text formats hold no binary bytes)");
+        return nullptr;
+    }
+    return p;
+}
+
+void PointsParser::emit_last() {
+    if (!blk_.chains.empty() || lb_.size() != 0 || !emitted_) {
+        Block b = std::move(blk_);
+        b.axes = axes_ != 0 ? axes_ : 2;
+        b.open = false;
+        b.layout = lb_.take();
+        if (b.layout.empty() && !b.chains.empty()) b.layout.push_back(static_cast<char>(kNop));
+        ready.push_back(std::move(b));
+        emitted_ = true;
+        blk_ = Block{};
+    }
+}
+
+Result<void> PointsParser::feed(std::string_view data, bool last) {
+    if (failed_) return err_;
+    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
+    const auto* end = p + data.size();
+    while (p < end) {
+        if (in_comment_) {
+            p = run_comment(p, end);
+            if (p == nullptr) return err_;
+            continue;
+        }
+        const unsigned char c = *p++;
+        if (c == '\n') {
+            if (!line_done(1)) return err_;
+            ++line_;
+            col_ = 1;
+            ws_only_ = true;
+            continue;
+        }
+        if (is_binary_byte(c)) {
+            fail(Errc::syntax, col_, describe_byte(c) + " (text formats hold no binary bytes)");
+            return err_;
+        }
+        if (c == '#' && ws_only_) {
+            buf_.push_back('#');
+            lb_.verbatim(buf_);
+            buf_.clear();
+            in_comment_ = true;
+            ++col_;
+            continue;
+        }
+        if (!is_ws(c)) ws_only_ = false;
+        if (buf_.size() >= kMaxLineBytes) {
+            fail(Errc::limit, col_, "a line longer than 65536 bytes");
+            return err_;
+        }
+        buf_.push_back(static_cast<char>(c));
+        ++col_;
+    }
+    if (last) {
+        finished_ = true;
+        if (!in_comment_ && !buf_.empty() && !line_done(0)) return err_;
+        in_chain_ = false;
+        emit_last();
+    }
+    return {};
+}
+
+// ---- writer ----------------------------------------------------------------------
+
+class PointsRenderer final : public FormatRenderer {
+public:
+    Result<void> write(const Block& block, std::string& out) override;
+};
+
+class PointCursor {
+public:
+    explicit PointCursor(const Block& b) : ch_(b.chains) {
+        if (b.continues && !ch_.empty()) {
+            j_ = 1;
+            p_ = ch_[0].start;
+        }
+    }
+    /// Moves to the next chain when the current one is exhausted.
+    void advance() {
+        if (i_ < ch_.size() && j_ > ch_[i_].steps.size()) {
+            ++i_;
+            j_ = 0;
+        }
+    }
+    bool at_chain_start() {
+        advance();
+        return i_ < ch_.size() && j_ == 0;
+    }
+    bool chain_left() {
+        return i_ < ch_.size() && j_ <= ch_[i_].steps.size();
+    }
+    /// The next point, or nullptr past the block's chains.
+    const Point* next() {
+        advance();
+        if (i_ >= ch_.size()) return nullptr;
+        const Chain& c = ch_[i_];
+        if (j_ == 0) p_ = c.start;
+        else apply_step(p_, c.steps[j_ - 1], c.axes);
+        ++j_;
+        return &p_;
+    }
+    bool done() {
+        advance();
+        return i_ >= ch_.size();
+    }
+    int axes() const { return ch_[i_ < ch_.size() ? i_ : 0].axes; }
+
+private:
+    const std::vector<Chain>& ch_;
+    std::size_t i_ = 0, j_ = 0;
+    Point p_{};
+};
+
+void append_style_line(std::string& out, const Point& p, int axes, std::uint8_t style) {
+    for (int a = 0; a < axes; ++a) {
+        if (a) out.append(style_sep(style));
+        append_int(out, p[a]);
+    }
+    out.append(style_eol(style));
+}
+
+Result<void> PointsRenderer::write(const Block& b, std::string& out) {
+    if (b.continues && b.chains.empty()) return corrupt("points", "a continued block without chains");
+    for (const Chain& c : b.chains) {
+        if (c.axes < 2 || c.axes > kMaxAxes) return corrupt("points", "a bad axis count");
+        for (const Step s : c.steps)
+            if (!step_valid(s, c.axes)) return corrupt("points", "an invalid step");
+    }
+    PointCursor cur(b);
+    if (b.layout.empty()) {  // canonical: chains separated by one empty line
+        bool first = true;
+        while (!cur.done()) {
+            if (!first && cur.at_chain_start()) out.push_back('\n');
+            first = false;
+            const int axes = cur.axes();
+            const Point* p = cur.next();
+            append_style_line(out, *p, axes, 0);
+        }
+        return {};
+    }
+    std::uint8_t style = 0;
+    LayoutCursor lc(b.layout);
+    while (!lc.done()) {
+        std::uint8_t op = 0;
+        lc.byte(op);
+        switch (op) {
+            case kNop:
+                break;
+            case kLines: {
+                std::uint64_t k = 0;
+                if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                for (std::uint64_t j = 0; j < k; ++j) {
+                    if (cur.done()) return corrupt("points", "a run of lines past the block's chains");
+                    const int axes = cur.axes();
+                    append_style_line(out, *cur.next(), axes, style);
+                }
+                break;
+            }
+            case kChains: {
+                std::uint64_t k = 0;
+                if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                for (std::uint64_t j = 0; j < k; ++j) {
+                    if (!cur.at_chain_start()) return corrupt("points", "a chain run not at a chain");
+                    const int axes = cur.axes();
+                    do {
+                        append_style_line(out, *cur.next(), axes, style);
+                    } while (cur.chain_left());
+                    out.append(style_eol(style));
+                }
+                break;
+            }
+            case kVerbatim: {
+                std::string_view s;
+                if (!lc.bytes(s)) return corrupt("points", "truncated verbatim bytes");
+                out.append(s);
+                break;
+            }
+            case kStyle:
+                if (!lc.byte(style) || (style & ~(kCrlf | 3u)) != 0) return corrupt("points", "a bad style");
+                break;
+            case kPoint: {
+                std::uint8_t flags = 0;
+                if (!lc.byte(flags) || (flags & ~0x0Fu) != 0 || cur.done())
+                    return corrupt("points", "a bad point line");
+                const int axes = cur.axes();
+                const Point p = *cur.next();
+                std::string_view s;
+                if (flags & kLead) {
+                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    out.append(s);
+                }
+                Spelling sp[kMaxAxes];
+                if (flags & kSpell)
+                    for (int a = 0; a < axes; ++a)
+                        if (!get_spelling(lc, p[a], sp[a])) return corrupt("points", "a bad spelling");
+                for (int a = 0; a < axes; ++a) {
+                    if (a) {
+                        if (flags & kGaps) {
+                            if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                            out.append(s);
+                        } else {
+                            out.append(style_sep(style));
+                        }
+                    }
+                    append_number(out, p[a], sp[a]);
+                }
+                if (flags & kTail) {
+                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    out.append(s);
+                } else {
+                    out.append(style_eol(style));
+                }
+                break;
+            }
+            default:
+                return corrupt("points", "an unknown operation");
+        }
+    }
+    if (!cur.done()) return corrupt("points", "points left over after the layout");
+    return {};
+}
+
+}  // namespace
+
+std::unique_ptr<FormatParser> make_points_parser(std::string source, std::size_t block_steps) {
+    return std::make_unique<PointsParser>(std::move(source), block_steps);
+}
+
+std::unique_ptr<FormatRenderer> make_points_renderer() { return std::make_unique<PointsRenderer>(); }
+
+}  // namespace stepzip::io

@@ -1,0 +1,233 @@
+// stepzip — the steps format: a binary STEP/DIR log, one byte per tick,
+// bit 2i = axis i stepped, bit 2i+1 = axis i direction negative (4 axes).
+// The whole file is one chain starting at the origin. Reader and writer; the
+// layout byte code is described in docs/formats.md.
+//
+// Every byte value is a valid tick, so the reader never fails. What is not a
+// step goes into the layout under a "sticky DIR" convention: a resting axis
+// is expected to keep the DIR level of the previous tick, so only DIR changes
+// on resting axes (exceptions) and idle ticks (no axis stepping) cost layout
+// bytes. Complexity: O(1) per tick.
+#include <algorithm>
+
+#include "document_internal.hpp"
+
+namespace stepzip::io {
+namespace {
+
+// Layout operation byte: kind in bits 6-7, argument in bits 0-5.
+enum : std::uint8_t {
+    kSteps = 0x00,  // n step ticks following the convention
+    kIdle = 0x40,   // n idle ticks at the current DIR level
+    kFlip = 0x80,   // bits 0-3: DIR bits of resting axes that flip on the next tick
+    kLevel = 0xC0,  // bits 0-3: DIR level at the start of the block (first op only)
+};
+// Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
+constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
+
+constexpr std::uint8_t kStepBits = 0x55;
+constexpr std::uint8_t kDirBits = 0xAA;
+
+// DIR bits (1, 3, 5, 7) <-> a 4-bit axis mask.
+std::uint8_t dir_to_mask(std::uint8_t d) {
+    return static_cast<std::uint8_t>(((d >> 1) & 1) | ((d >> 2) & 2) | ((d >> 3) & 4) | ((d >> 4) & 8));
+}
+std::uint8_t mask_to_dir(std::uint8_t m) {
+    return static_cast<std::uint8_t>(((m & 1) << 1) | ((m & 2) << 2) | ((m & 4) << 3) | ((m & 8) << 4));
+}
+
+void put_count(std::string& out, std::uint8_t kind, std::uint64_t n) {
+    if (n <= 63) {
+        out.push_back(static_cast<char>(kind | (n - 1)));
+    } else {
+        out.push_back(static_cast<char>(kind | 63));
+        put_varint(out, n - 64);
+    }
+}
+
+class StepsParser final : public FormatParser {
+public:
+    StepsParser(std::string source, std::size_t block_steps)
+        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {
+        blk_.chains.emplace_back();
+    }
+
+    Result<void> feed(std::string_view data, bool last) override;
+
+private:
+    void flush_run() {
+        if (run_n_ == 0) return;
+        put_count(layout_, run_kind_, run_n_);
+        run_n_ = 0;
+    }
+    void run(std::uint8_t kind) {
+        if (run_n_ != 0 && (run_kind_ != kind || run_n_ == kMaxRun)) flush_run();
+        run_kind_ = kind;
+        ++run_n_;
+    }
+    void cut(bool open);
+    int axes() const {
+        int a = 2;
+        for (int i = 0; i < 4; ++i)
+            if (seen_ & (1u << (2 * i))) a = std::max(a, i + 1);
+        return a;
+    }
+
+    std::string source_;
+    std::size_t block_steps_;
+    std::size_t cap_;
+    std::uint8_t level_ = 0;  // DIR bits of the previous tick
+    std::uint8_t seen_ = 0;   // STEP bits seen anywhere so far
+    Block blk_;
+    std::size_t blk_steps_ = 0;
+    std::string layout_;
+    std::uint8_t run_kind_ = kSteps;
+    std::uint64_t run_n_ = 0;
+    bool finished_ = false;
+};
+
+void StepsParser::cut(bool open) {
+    flush_run();
+    Block b = std::move(blk_);
+    b.axes = axes();
+    for (Chain& c : b.chains) c.axes = b.axes;
+    b.open = open;
+    b.layout = std::move(layout_);
+    layout_.clear();
+    Point end{};
+    if (open) end = b.chains.back().end();
+    ready.push_back(std::move(b));
+    blk_ = Block{};
+    blk_.continues = open;
+    Chain c;
+    c.start = end;
+    blk_.chains.push_back(std::move(c));
+    blk_steps_ = 0;
+    if (level_ != 0) layout_.push_back(static_cast<char>(kLevel | dir_to_mask(level_)));
+}
+
+Result<void> StepsParser::feed(std::string_view data, bool last) {
+    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
+    std::vector<Step>* steps = &blk_.chains.back().steps;
+    for (const char ch : data) {
+        const auto b = static_cast<std::uint8_t>(ch);
+        const std::uint8_t stepping = b & kStepBits;
+        const auto moving_dirs = static_cast<std::uint8_t>(stepping << 1);
+        const std::uint8_t dirs = b & kDirBits;
+        const auto flip = static_cast<std::uint8_t>((dirs ^ level_) & ~moving_dirs & kDirBits);
+        if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_.size() >= cap_) {
+            cut(true);
+            steps = &blk_.chains.back().steps;
+        }
+        if (flip != 0) {
+            flush_run();
+            layout_.push_back(static_cast<char>(kFlip | dir_to_mask(flip)));
+        }
+        if (stepping != 0) {
+            run(kSteps);
+            steps->push_back(static_cast<Step>(b & (stepping | moving_dirs)));
+            ++blk_steps_;
+            seen_ |= stepping;
+        } else {
+            run(kIdle);
+        }
+        level_ = dirs;
+    }
+    if (last) {
+        finished_ = true;
+        flush_run();
+        Block b = std::move(blk_);
+        b.axes = axes();
+        for (Chain& c : b.chains) c.axes = b.axes;
+        b.open = false;
+        b.layout = std::move(layout_);
+        ready.push_back(std::move(b));
+    }
+    return {};
+}
+
+// ---- writer ----------------------------------------------------------------------
+
+class StepsRenderer final : public FormatRenderer {
+public:
+    Result<void> write(const Block& block, std::string& out) override;
+};
+
+Result<void> StepsRenderer::write(const Block& b, std::string& out) {
+    if (b.chains.size() > 1) return corrupt("steps", "a steps block holds one chain");
+    if (!b.continues && !b.chains.empty() && b.chains[0].start != Point{})
+        return corrupt("steps", "the chain does not start at the origin");
+    static const std::vector<Step> kNone;
+    const std::vector<Step>& steps = b.chains.empty() ? kNone : b.chains[0].steps;
+    for (const Step s : steps)
+        if (!step_valid(s, 4)) return corrupt("steps", "a step outside four axes");
+    std::uint8_t level = 0;
+    std::uint8_t flip = 0;
+    std::size_t k = 0;
+    auto emit_steps = [&](std::uint64_t n) {
+        for (std::uint64_t j = 0; j < n; ++j) {
+            const auto s = static_cast<std::uint8_t>(steps[k++]);
+            const auto moving_dirs = static_cast<std::uint8_t>((s & kStepBits) << 1);
+            if (flip & moving_dirs) return false;
+            const auto byte = static_cast<std::uint8_t>(s | ((level ^ flip) & ~moving_dirs & kDirBits));
+            out.push_back(static_cast<char>(byte));
+            level = byte & kDirBits;
+            flip = 0;
+        }
+        return true;
+    };
+    if (b.layout.empty()) {
+        out.reserve(out.size() + steps.size());
+        emit_steps(steps.size());
+        return {};
+    }
+    LayoutCursor lc(b.layout);
+    bool first = true;
+    while (!lc.done()) {
+        std::uint8_t op = 0;
+        lc.byte(op);
+        const std::uint8_t kind = op & 0xC0;
+        const std::uint8_t arg = op & 0x3F;
+        if (kind == kFlip || kind == kLevel) {
+            if (arg == 0 || arg > 15) return corrupt("steps", "a bad DIR mask");
+            if (kind == kLevel) {
+                if (!first) return corrupt("steps", "a DIR level after the first operation");
+                level = mask_to_dir(arg);
+            } else {
+                if (flip != 0) return corrupt("steps", "two flips for one tick");
+                flip = mask_to_dir(arg);
+            }
+            first = false;
+            continue;
+        }
+        first = false;
+        std::uint64_t n = arg + 1u;
+        if (arg == 63) {
+            std::uint64_t extra = 0;
+            if (!lc.varint(extra) || extra > kMaxRun) return corrupt("steps", "a bad run length");
+            n = 64 + extra;
+        }
+        if (kind == kSteps) {
+            if (n > steps.size() - k) return corrupt("steps", "a run past the block's steps");
+            if (!emit_steps(n)) return corrupt("steps", "a flip on a stepping axis");
+        } else {
+            out.push_back(static_cast<char>(level ^ flip));
+            level ^= flip;
+            flip = 0;
+            out.append(static_cast<std::size_t>(n - 1), static_cast<char>(level));
+        }
+    }
+    if (k != steps.size()) return corrupt("steps", "steps left over after the layout");
+    if (flip != 0) return corrupt("steps", "a flip after the last tick");
+    return {};
+}
+
+}  // namespace
+
+std::unique_ptr<FormatParser> make_steps_parser(std::string source, std::size_t block_steps) {
+    return std::make_unique<StepsParser>(std::move(source), block_steps);
+}
+
+std::unique_ptr<FormatRenderer> make_steps_renderer() { return std::make_unique<StepsRenderer>(); }
+
+}  // namespace stepzip::io
