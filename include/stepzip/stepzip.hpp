@@ -3,6 +3,7 @@
 #pragma once
 
 #include "stepzip/chain.hpp"
+#include "stepzip/container.hpp"
 #include "stepzip/error.hpp"
 #include "stepzip/interpolate.hpp"
 #include "stepzip/profile.hpp"

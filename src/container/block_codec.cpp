@@ -1,0 +1,320 @@
+// The .stz block codec: chain payload serialization and parsing, block
+// records, frame header (docs/FORMAT.md). Shared by compressor and decoder.
+#include "block_codec.hpp"
+
+#include <xxhash.h>
+#include <zstd.h>
+
+#include <cstdlib>
+#include <limits>
+
+#include "bytes.hpp"
+
+namespace stepzip::stz {
+
+std::uint64_t hash64(std::string_view data) { return XXH64(data.data(), data.size(), 0); }
+std::uint32_t check32(std::string_view data) { return static_cast<std::uint32_t>(hash64(data)); }
+
+// ---------------------------------------------------------------- header
+
+std::string write_frame_header(const FrameHeader& h) {
+    std::string out(reinterpret_cast<const char*>(kMagic), 4);
+    put_u8(out, kFormatVersion);
+    put_u8(out, static_cast<unsigned>(h.profile));
+    put_u8(out, static_cast<unsigned>(h.format));
+    put_u8(out, static_cast<unsigned>(h.axes));
+    put_u8(out, static_cast<unsigned>(h.segmenter));
+    put_u8(out, 0);
+    return out;
+}
+
+Result<FrameHeader> parse_frame_header(std::string_view b, std::string_view source) {
+    const std::string src(source);
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (i >= b.size())
+            return make_error(Errc::truncated, src + ": byte " + std::to_string(i) +
+                                                   ": truncated frame header");
+        if (static_cast<unsigned char>(b[i]) != kMagic[i])
+            return make_error(Errc::bad_magic,
+                              src + ": byte " + std::to_string(i) + ": not a .stz file (bad magic)");
+    }
+    if (b.size() < 5)
+        return make_error(Errc::truncated, src + ": byte 4: truncated frame header");
+    const unsigned version = static_cast<unsigned char>(b[4]);
+    if (version != static_cast<unsigned>(kFormatVersion))
+        return make_error(Errc::bad_version, src + ": byte 4: format version " +
+                                                 std::to_string(version) + " is not supported (this "
+                                                 "decoder reads version " +
+                                                 std::to_string(kFormatVersion) + ")");
+    if (b.size() < kFrameHeaderSize)
+        return make_error(Errc::truncated,
+                          src + ": byte " + std::to_string(b.size()) + ": truncated frame header");
+    FrameHeader h;
+    const unsigned prof = static_cast<unsigned char>(b[5]);
+    const unsigned fmt = static_cast<unsigned char>(b[6]);
+    const unsigned axes = static_cast<unsigned char>(b[7]);
+    const unsigned seg = static_cast<unsigned char>(b[8]);
+    const unsigned reserved = static_cast<unsigned char>(b[9]);
+    if (prof > static_cast<unsigned>(Profile::marlin))
+        return make_error(Errc::corrupt, src + ": byte 5: unknown profile " + std::to_string(prof));
+    if (fmt > static_cast<unsigned>(InputFormat::steps))
+        return make_error(Errc::corrupt, src + ": byte 6: unknown input format " + std::to_string(fmt));
+    h.profile = static_cast<Profile>(prof);
+    if (axes < 2 || static_cast<int>(axes) > profile_max_axes(h.profile))
+        return make_error(Errc::corrupt, src + ": byte 7: axis count " + std::to_string(axes) +
+                                             " is not valid for profile " +
+                                             std::string(profile_name(h.profile)));
+    if ((seg & ~3u) != 0 || reserved != 0)
+        return make_error(Errc::reserved_bits,
+                          src + ": byte " + ((seg & ~3u) ? "8" : "9") + ": reserved bits are set");
+    if (seg > 2) return make_error(Errc::corrupt, src + ": byte 8: unknown segmenter 3");
+    h.format = static_cast<InputFormat>(fmt);
+    h.axes = static_cast<int>(axes);
+    h.segmenter = static_cast<SegmenterKind>(seg);
+    return h;
+}
+
+// ---------------------------------------------------------------- directions
+
+namespace {
+
+// 2D direction: angular octant 0..7 counter-clockwise from +x, indexed by
+// lead * 4 + negmask (negmask bit i = axis i negative).
+constexpr int kOctantOf[8] = {0, 3, 7, 4, 1, 2, 6, 5};
+constexpr int kCodeOfOctant[8] = {0, 4, 5, 1, 3, 7, 6, 2};
+
+struct Direction {
+    int lead = 0;
+    unsigned negmask = 0;
+};
+
+Direction direction_of(const Point& d, int axes) {
+    Direction dir;
+    dir.lead = leading_axis(d, axes);
+    for (int i = 0; i < axes; ++i)
+        if (d[i] < 0) dir.negmask |= 1u << i;
+    return dir;
+}
+
+std::int64_t seg_steps(Profile p, const Point& d, int axes) {
+    return segment_length(d, axes, profile_eight_connected(p));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- chain payload
+
+namespace {
+enum Stream { kLayout, kHeads, kDirs, kLeads, kMinors, kPhases, kStreams };
+}
+
+std::string write_chain_payload(const Block& block, Profile p,
+                                const std::vector<std::vector<Segment>>& segs,
+                                const PayloadVariant& variant) {
+    const int axes = block.axes;
+    std::string streams[kStreams];
+    std::string* s[kStreams];
+    for (int i = 0; i < kStreams; ++i) s[i] = variant.interleaved && i > kHeads ? &streams[kHeads] : &streams[i];
+    streams[kLayout] = block.layout;
+    std::uint64_t nsegments = 0, nsteps = 0;
+    Point ref{};
+    int prev_octant = 0;
+    for (std::size_t c = 0; c < block.chains.size(); ++c) {
+        const Chain& chain = block.chains[c];
+        for (int i = 0; i < axes; ++i) put_svarint(*s[kHeads], chain.start[i] - ref[i]);
+        put_varint(*s[kHeads], segs[c].size());
+        for (const Segment& seg : segs[c]) {
+            const Direction dir = direction_of(seg.delta, axes);
+            if (axes == 2) {
+                const int oct = kOctantOf[dir.lead * 4 + dir.negmask];
+                put_u8(*s[kDirs], static_cast<unsigned>((oct - prev_octant) & 7));
+                if (variant.octant_delta) prev_octant = oct;
+            } else {
+                put_varint(*s[kDirs], (static_cast<std::uint64_t>(dir.lead) << axes) | dir.negmask);
+            }
+            const std::int64_t l = std::llabs(seg.delta[dir.lead]);
+            put_varint(*s[kLeads], static_cast<std::uint64_t>(l - 1));
+            for (int i = 0; i < axes; ++i)
+                if (i != dir.lead) put_varint(*s[kMinors], static_cast<std::uint64_t>(std::llabs(seg.delta[i])));
+            for (int j = 0; j < phase_count(p, axes); ++j) {
+                const auto ab = *phase_arguments(p, seg, axes, j);
+                const PhaseRange r = phase_range(p, ab.first, ab.second);
+                if (r.hi - r.lo == 1) continue;
+                put_svarint(*s[kPhases], seg.phase[j] - default_phase(p, ab.first, ab.second));
+            }
+            nsteps += static_cast<std::uint64_t>(seg_steps(p, seg.delta, axes));
+            ++nsegments;
+        }
+        ref = variant.start_from_end ? chain.end() : chain.start;
+    }
+    std::string out;
+    put_varint(out, block.chains.size());
+    put_varint(out, nsegments);
+    put_varint(out, nsteps);
+    if (variant.interleaved) {
+        put_varint(out, streams[kLayout].size());
+        out += streams[kLayout];
+        out += streams[kHeads];
+    } else {
+        for (const std::string& st : streams) put_varint(out, st.size());
+        for (const std::string& st : streams) out += st;
+    }
+    return out;
+}
+
+Result<void> read_chain_payload(std::string_view payload, Profile p, int axes, bool expand,
+                                Block& out, BlockCounts& counts, const std::string& where) {
+    Cursor hdr(payload);
+    auto fail = [&](Errc e, std::size_t at, const std::string& what) -> Error {
+        return make_error(e, where + " byte " + std::to_string(at) + ": " + what);
+    };
+    std::uint64_t nchains, nsegments, nsteps, layout_size;
+    if (!hdr.varint(nchains) || !hdr.varint(nsegments) || !hdr.varint(nsteps) ||
+        !hdr.varint(layout_size))
+        return fail(Errc::corrupt, hdr.pos(), "bad payload header");
+    if (nchains > kMaxBlockChains || nsegments > kMaxBlockSteps || nsteps > kMaxBlockSteps)
+        return fail(Errc::limit, 0, "payload declares more chains, segments or steps than the limits");
+    std::string_view layout;
+    if (!hdr.bytes(layout_size > hdr.left() ? hdr.left() + 1 : static_cast<std::size_t>(layout_size), layout))
+        return fail(Errc::corrupt, hdr.pos(), "layout runs past the payload");
+    // Records: every field is read from one cursor, in record order.
+    const std::size_t base = hdr.pos();
+    Cursor records(payload.substr(base));
+    Cursor* cur[kStreams];
+    for (auto& c : cur) c = &records;
+    auto at = [&](int) { return base + records.pos(); };
+    auto short_stream = [&](int st) {
+        return fail(Errc::corrupt, at(st), "records end early");
+    };
+    if (expand) {
+        out.axes = axes;
+        out.chains.clear();
+        out.layout.assign(layout);
+    }
+    Point ref{};
+    int prev_octant = 0;
+    std::uint64_t seen_segments = 0, seen_steps = 0;
+    for (std::uint64_t c = 0; c < nchains; ++c) {
+        Chain chain;
+        chain.axes = axes;
+        for (int i = 0; i < axes; ++i) {
+            std::int64_t d;
+            if (!cur[kHeads]->svarint(d)) return short_stream(kHeads);
+            if (d > (std::int64_t{1} << 62) || d < -(std::int64_t{1} << 62) ||
+                (ref[i] > 0 && d > std::numeric_limits<std::int64_t>::max() - ref[i]) ||
+                (ref[i] < 0 && d < std::numeric_limits<std::int64_t>::min() - ref[i]))
+                return fail(Errc::corrupt, at(kHeads), "chain start out of range");
+            chain.start[i] = ref[i] + d;
+        }
+        std::uint64_t nseg;
+        if (!cur[kHeads]->varint(nseg)) return short_stream(kHeads);
+        if (nseg > nsegments - seen_segments)
+            return fail(Errc::corrupt, at(kHeads), "more segments than declared");
+        Point pos = chain.start;
+        for (std::uint64_t k = 0; k < nseg; ++k) {
+            Segment seg;
+            Direction dir;
+            std::uint64_t code;
+            if (axes == 2) {
+                unsigned b;
+                if (!cur[kDirs]->u8(b)) return short_stream(kDirs);
+                if (b > 7) return fail(Errc::corrupt, at(kDirs) - 1, "bad direction code");
+                prev_octant = (prev_octant + static_cast<int>(b)) & 7;
+                code = static_cast<std::uint64_t>(kCodeOfOctant[prev_octant]);
+                dir.lead = static_cast<int>(code >> 2);
+                dir.negmask = static_cast<unsigned>(code & 3);
+            } else {
+                if (!cur[kDirs]->varint(code)) return short_stream(kDirs);
+                dir.lead = static_cast<int>(code >> axes);
+                dir.negmask = static_cast<unsigned>(code & ((1u << axes) - 1));
+                if (code >> axes >= static_cast<std::uint64_t>(axes))
+                    return fail(Errc::corrupt, at(kDirs), "bad direction code");
+            }
+            std::uint64_t l1;
+            if (!cur[kLeads]->varint(l1)) return short_stream(kLeads);
+            if (l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal))
+                return fail(Errc::limit, at(kLeads), "segment longer than 2^30 steps");
+            const std::int64_t l = static_cast<std::int64_t>(l1) + 1;
+            for (int i = 0; i < axes; ++i) {
+                std::int64_t v;
+                if (i == dir.lead) {
+                    v = l;
+                } else {
+                    std::uint64_t s;
+                    if (!cur[kMinors]->varint(s)) return short_stream(kMinors);
+                    if (s > static_cast<std::uint64_t>(l) || (i < dir.lead && s == static_cast<std::uint64_t>(l)))
+                        return fail(Errc::corrupt, at(kMinors), "minor total exceeds the leading total");
+                    v = static_cast<std::int64_t>(s);
+                }
+                if ((dir.negmask >> i) & 1u) {
+                    if (v == 0) return fail(Errc::corrupt, at(kDirs), "sign on a resting axis");
+                    v = -v;
+                }
+                seg.delta[i] = v;
+            }
+            for (int j = 0; j < phase_count(p, axes); ++j) {
+                const auto ab = *phase_arguments(p, seg, axes, j);
+                const PhaseRange r = phase_range(p, ab.first, ab.second);
+                if (r.hi - r.lo == 1) {
+                    seg.phase[j] = r.lo;
+                    continue;
+                }
+                std::int64_t d;
+                if (!cur[kPhases]->svarint(d)) return short_stream(kPhases);
+                if (d > (std::int64_t{1} << 62) || d < -(std::int64_t{1} << 62))
+                    return fail(Errc::corrupt, at(kPhases), "phase out of range");
+                seg.phase[j] = default_phase(p, ab.first, ab.second) + d;
+            }
+            if (auto ok = check_segment(p, seg, axes); !ok)
+                return fail(Errc::corrupt, at(kPhases), "invalid segment: " + ok.error().message);
+            const std::int64_t n = seg_steps(p, seg.delta, axes);
+            seen_steps += static_cast<std::uint64_t>(n);
+            if (seen_steps > nsteps)
+                return fail(Errc::corrupt, at(kLeads), "more steps than declared");
+            for (int i = 0; i < axes; ++i) pos[i] += seg.delta[i];
+            if (expand) expand_segment(p, seg, axes, chain.steps);
+            ++seen_segments;
+        }
+        ref = pos;
+        if (expand) out.chains.push_back(std::move(chain));
+    }
+    if (seen_segments != nsegments || seen_steps != nsteps)
+        return fail(Errc::corrupt, 0, "declared segment or step count does not match");
+    if (!records.done()) return fail(Errc::corrupt, at(0), "trailing bytes after the last record");
+    counts.chains += nchains;
+    counts.segments += nsegments;
+    counts.steps += nsteps;
+    return {};
+}
+
+// ---------------------------------------------------------------- records
+
+std::string make_block_record(unsigned type, unsigned flags, std::string_view raw, int level) {
+    std::string rec;
+    put_u8(rec, type);
+    put_u8(rec, flags);
+    const std::size_t bound = ZSTD_compressBound(raw.size());
+    std::string z(bound, '\0');
+    const std::size_t n = ZSTD_compress(z.data(), bound, raw.data(), raw.size(), level);
+    if (ZSTD_isError(n)) return {};
+    z.resize(n);
+    put_le(rec, z.size(), 4);
+    put_le(rec, raw.size(), 4);
+    rec += z;
+    put_le(rec, check32(rec), 4);
+    return rec;
+}
+
+Result<std::string> unzstd(std::string_view compressed, std::uint32_t dsize, const std::string& where) {
+    const unsigned long long declared = ZSTD_getFrameContentSize(compressed.data(), compressed.size());
+    if (declared == ZSTD_CONTENTSIZE_ERROR || declared != dsize)
+        return make_error(Errc::corrupt, where + ": payload is not a zstd frame of the declared size");
+    std::string out(dsize, '\0');
+    const std::size_t n = ZSTD_decompress(out.data(), out.size(), compressed.data(), compressed.size());
+    if (ZSTD_isError(n) || n != dsize)
+        return make_error(Errc::corrupt, where + ": payload does not decompress (" +
+                                             (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "size") + ")");
+    return out;
+}
+
+}  // namespace stepzip::stz

@@ -1,0 +1,233 @@
+// The .stz container's lossless contract: decompress(compress(x)) == x for
+// random chains under every profile and segmenter, any block size, any
+// thread count (and -T 1 / -T 2 give identical bytes); golden files made by
+// earlier versions keep decoding.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+
+namespace stepzip {
+namespace {
+
+// Random chains: `four` = 4-connected; runs of a direction (so segments are
+// longer than a step) mixed with turns.
+std::vector<Chain> random_chains(std::uint64_t seed, int count, bool four, int axes = 2) {
+    std::mt19937_64 rng(seed);
+    std::vector<Chain> out;
+    for (int i = 0; i < count; ++i) {
+        Chain c;
+        c.axes = axes;
+        for (int a = 0; a < axes; ++a) c.start[a] = static_cast<std::int64_t>(rng() % 200) - 100;
+        const int n = static_cast<int>(rng() % 120);
+        Step cur = 0;
+        for (int k = 0; k < n; ++k) {
+            if (cur == 0 || rng() % 4 == 0) {
+                do {
+                    int d[kMaxAxes] = {};
+                    if (four) {
+                        d[rng() % axes] = rng() % 2 ? 1 : -1;
+                    } else {
+                        for (int a = 0; a < axes; ++a) d[a] = static_cast<int>(rng() % 3) - 1;
+                    }
+                    cur = make_step(d, axes);
+                } while (cur == 0);
+            }
+            c.steps.push_back(cur);
+        }
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+std::string must_text(InputFormat f, const std::vector<Chain>& chains) {
+    auto t = write_chains(f, chains);
+    EXPECT_TRUE(t.ok()) << (t.ok() ? "" : t.error().message);
+    return t.ok() ? *t : std::string();
+}
+
+void expect_round_trip(const std::string& input, const CompressOptions& opt, const char* what) {
+    auto z = compress(input, opt);
+    ASSERT_TRUE(z.ok()) << what << ": " << z.error().message;
+    auto back = decompress(*z);
+    ASSERT_TRUE(back.ok()) << what << ": " << back.error().message;
+    EXPECT_EQ(*back, input) << what;
+}
+
+TEST(ContainerRoundTrip, EveryProfileAndSegmenterOnRandomChains) {
+    const std::string eight = must_text(InputFormat::freeman, random_chains(1, 40, false));
+    const std::string four = must_text(InputFormat::freeman, random_chains(2, 40, true));
+    for (Profile p : kAllProfiles)
+        for (SegmenterKind k : {SegmenterKind::greedy, SegmenterKind::optimal, SegmenterKind::patent})
+            for (std::size_t block : {std::size_t{5}, std::size_t{64}, kDefaultBlockSteps}) {
+                CompressOptions opt;
+                opt.profile = p;
+                opt.segmenter = k;
+                opt.block_steps = block;
+                opt.allow_raw = false;  // exercise the segment path and its proof
+                const std::string what = std::string(profile_name(p)) + "/" +
+                                         std::string(segmenter_name(k)) + "/" + std::to_string(block);
+                expect_round_trip(four, opt, what.c_str());
+                if (profile_eight_connected(p) && k != SegmenterKind::patent)
+                    expect_round_trip(eight, opt, what.c_str());  // patent reads 4-connected only
+            }
+}
+
+TEST(ContainerRoundTrip, NamedFourConnectedProfileRefusesDiagonals) {
+    CompressOptions opt;
+    opt.profile = Profile::eval4;
+    auto z = compress("0 0 0011\n", opt);
+    ASSERT_FALSE(z.ok());
+    EXPECT_EQ(z.error().code, Errc::connectivity) << z.error().message;
+}
+
+TEST(ContainerRoundTrip, AutoProfileAndLevels) {
+    const std::string input = must_text(InputFormat::freeman, random_chains(3, 60, false));
+    for (int level : {1, 3, 19}) {
+        CompressOptions opt;
+        opt.level = level;
+        opt.block_steps = 300;
+        expect_round_trip(input, opt, "auto");
+    }
+}
+
+TEST(ContainerRoundTrip, ThreadCountDoesNotChangeTheBytes) {
+    const std::string input = must_text(InputFormat::freeman, random_chains(4, 200, false));
+    CompressOptions opt;
+    opt.block_steps = 97;
+    opt.threads = 1;
+    auto one = compress(input, opt);
+    opt.threads = 2;
+    auto two = compress(input, opt);
+    opt.threads = 5;
+    auto five = compress(input, opt);
+    ASSERT_TRUE(one.ok() && two.ok() && five.ok());
+    EXPECT_EQ(*one, *two);
+    EXPECT_EQ(*one, *five);
+    auto back = decompress(*two);
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    EXPECT_EQ(*back, input);
+}
+
+TEST(ContainerRoundTrip, EmptyInputAndEmptyChains) {
+    expect_round_trip("", {}, "empty");
+    CompressOptions opt;
+    opt.format = InputFormat::freeman;
+    expect_round_trip("3 4\n", opt, "chain without steps");
+}
+
+TEST(ContainerRoundTrip, PointsAndStepsFormatsOnSeveralAxes) {
+    for (int axes : {2, 3, 4}) {
+        const auto chains = random_chains(10 + axes, 12, false, axes);
+        CompressOptions opt;
+        opt.format = InputFormat::points;
+        opt.block_steps = 50;
+        expect_round_trip(must_text(InputFormat::points, chains), opt, "points");
+        std::vector<Chain> at_origin = chains;
+        for (Chain& c : at_origin) c.start = Point{};
+        opt.format = InputFormat::steps;
+        expect_round_trip(must_text(InputFormat::steps, {at_origin.front()}), opt, "steps");
+    }
+}
+
+TEST(ContainerRoundTrip, ControllerLinesCostOneSegmentPerVectorWithoutPhase) {
+    // Vectors expanded by GRBL's interpolator: one segment per vector under --profile grbl.
+    std::mt19937_64 rng(7);
+    Chain c;
+    int vectors = 0;
+    for (int i = 0; i < 50; ++i) {
+        Point d{};
+        d[0] = static_cast<std::int64_t>(rng() % 400) + 1;
+        d[1] = static_cast<std::int64_t>(rng() % 400) - 200;
+        if (i % 2) d[0] = -d[0];
+        expand_segment(Profile::grbl, default_segment(Profile::grbl, d, 2), 2, c.steps);
+        ++vectors;
+    }
+    const std::string input = must_text(InputFormat::freeman, {c});
+    CompressOptions opt;
+    opt.profile = Profile::grbl;
+    auto z = compress(input, opt);
+    ASSERT_TRUE(z.ok()) << z.error().message;
+    std::size_t pos = 0;
+    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
+        const std::size_t n = std::min(cap, z->size() - pos);
+        std::copy_n(z->data() + pos, n, buf);
+        pos += n;
+        return n;
+    };
+    auto info = inspect_stream(in);
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_EQ(info->raw_blocks, 0u);
+    EXPECT_EQ(info->chains, 1u);
+    EXPECT_EQ(info->steps, c.steps.size());
+    EXPECT_LE(info->segments, static_cast<std::uint64_t>(vectors));
+    EXPECT_LT(z->size() * 8, c.steps.size() / 4);  // far below a bit per step
+}
+
+TEST(ContainerRoundTrip, PatentStatisticsAreStoredInTheFrame) {
+    const std::string input = "0 0 02002002000\n0 0 222000\n";
+    CompressOptions opt;
+    opt.profile = Profile::patent;
+    opt.segmenter = SegmenterKind::patent;
+    // Count through compress_stream, read back through inspect_stream.
+    std::string frame;
+    std::size_t pos = 0;
+    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
+        const std::size_t n = std::min(cap, input.size() - pos);
+        std::copy_n(input.data() + pos, n, buf);
+        pos += n;
+        return n;
+    };
+    WriteFn out = [&](std::string_view b) -> Result<void> {
+        frame += b;
+        return {};
+    };
+    auto made = compress_stream(in, out, opt);
+    ASSERT_TRUE(made.ok()) << made.error().message;
+    EXPECT_GT(made->stats.patent_segments, 0u);
+    pos = 0;
+    ReadFn fin = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
+        const std::size_t n = std::min(cap, frame.size() - pos);
+        std::copy_n(frame.data() + pos, n, buf);
+        pos += n;
+        return n;
+    };
+    auto seen = inspect_stream(fin);
+    ASSERT_TRUE(seen.ok()) << seen.error().message;
+    EXPECT_EQ(seen->segmenter, SegmenterKind::patent);
+    EXPECT_EQ(seen->stats.patent_segments, made->stats.patent_segments);
+    EXPECT_EQ(seen->stats.patent_exact, made->stats.patent_exact);
+    EXPECT_EQ(seen->stats.patent_max_deviation, made->stats.patent_max_deviation);
+    EXPECT_EQ(seen->checksum, made->checksum);
+}
+
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+TEST(ContainerGolden, EveryGoldenFileDecodesToItsOriginal) {
+    const std::filesystem::path dir = std::filesystem::path(STEPZIP_SOURCE_DIR) / "tests" / "golden";
+    int seen = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        if (e.path().extension() != ".stz") continue;
+        std::filesystem::path original = e.path();
+        original.replace_extension();
+        ASSERT_TRUE(std::filesystem::exists(original)) << original;
+        auto back = decompress(slurp(e.path()), e.path().filename().string());
+        ASSERT_TRUE(back.ok()) << e.path() << ": " << back.error().message;
+        EXPECT_EQ(*back, slurp(original)) << e.path();
+        ++seen;
+    }
+    EXPECT_GE(seen, 5);
+}
+
+}  // namespace
+}  // namespace stepzip
