@@ -71,12 +71,16 @@ Result<std::string> write_svg(const std::vector<SegmentedChain>& chains, const C
     out += "<desc>grey: unit steps; blue: axis-parallel runs; green: diagonals; red: other "
            "slopes; dots: segment end points; circle: chain start</desc>\n";
     out += "<g fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-    const double r_end = std::max(0.15, extent / 400.0);
+    // Sizes in picture units that come out as fixed pixel sizes at the
+    // default width (no vector-effect: not every renderer supports it).
+    const double px_unit = 1.0 / scale;
+    const double r_end = 2.0 * px_unit;
     for (const SegmentedChain& sc : chains) {
         const Chain& ch = sc.chain;
         // the chain, step by step
-        out += "<polyline stroke=\"#9a9a9a\" stroke-width=\"1\" "
-               "vector-effect=\"non-scaling-stroke\" points=\"";
+        std::snprintf(buf, sizeof buf, "<polyline stroke=\"#b0b0b0\" stroke-width=\"%.4g\" points=\"",
+                      3.0 * px_unit);
+        out += buf;
         Point p = ch.start;
         out += px(p[0]) + "," + py(p[1]);
         for (Step s : ch.steps) {
@@ -88,22 +92,25 @@ Result<std::string> write_svg(const std::vector<SegmentedChain>& chains, const C
         std::int64_t x = ch.start[0], y = ch.start[1];
         for (const Segment& s : sc.segments) {
             const std::int64_t nx = x + s.delta[0], ny = y + s.delta[1];
+            std::snprintf(buf, sizeof buf, "\" stroke-width=\"%.4g\"", 1.5 * px_unit);
             out += "<line x1=\"" + px(x) + "\" y1=\"" + py(y) + "\" x2=\"" + px(nx) +
-                   "\" y2=\"" + py(ny) + "\" stroke=\"" + shape_colour(segment_shape(s)) +
-                   "\" stroke-width=\"2\" vector-effect=\"non-scaling-stroke\"" +
-                   (info.exact ? "" : " stroke-dasharray=\"4 2\"") + "><title>(" +
-                   std::to_string(s.delta[0]) + ", " + std::to_string(s.delta[1]) +
-                   ")</title></line>\n";
+                   "\" y2=\"" + py(ny) + "\" stroke=\"" + shape_colour(segment_shape(s)) + buf;
+            if (!info.exact) {
+                std::snprintf(buf, sizeof buf, " stroke-dasharray=\"%.4g %.4g\"", 6 * px_unit,
+                              3 * px_unit);
+                out += buf;
+            }
+            out += "/>\n";
             x = nx;
             y = ny;
-            std::snprintf(buf, sizeof buf, "<circle cx=\"%s\" cy=\"%s\" r=\"%.3g\" fill=\"#000\"/>\n",
+            std::snprintf(buf, sizeof buf, "<circle cx=\"%s\" cy=\"%s\" r=\"%.4g\" fill=\"#000\"/>\n",
                           px(x).c_str(), py(y).c_str(), r_end);
             out += buf;
         }
         std::snprintf(buf, sizeof buf,
-                      "<circle cx=\"%s\" cy=\"%s\" r=\"%.3g\" stroke=\"#000\" stroke-width=\"1\" "
-                      "vector-effect=\"non-scaling-stroke\"/>\n",
-                      px(ch.start[0]).c_str(), py(ch.start[1]).c_str(), 2.5 * r_end);
+                      "<circle cx=\"%s\" cy=\"%s\" r=\"%.4g\" fill=\"none\" stroke=\"#000\" "
+                      "stroke-width=\"%.4g\"/>\n",
+                      px(ch.start[0]).c_str(), py(ch.start[1]).c_str(), 2.5 * r_end, px_unit);
         out += buf;
     }
     out += "</g>\n</svg>\n";
