@@ -61,9 +61,11 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
     for (std::size_t e = n; e != 0; e = from[e]) cuts.push_back(e);
     std::size_t pos = 0;
     for (auto it = cuts.rbegin(); it != cuts.rend(); ++it) {
-        auto seg = fit_segment(profile_, steps.subspan(pos, *it - pos), axes_);
+        const auto run = steps.subspan(pos, *it - pos);
+        auto seg = fit_segment(profile_, run, axes_);
         assert(seg.has_value());
-        out.push_back(*seg);
+        if (seg) out.push_back(*seg);
+        else greedy.run(run, out);  // never reached when the recognizer is right
         pos = *it;
     }
 }
