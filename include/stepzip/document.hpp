@@ -43,12 +43,14 @@ struct Block {
     int axes = 2;               ///< axis count of every chain in the block
     std::vector<Chain> chains;  ///< chains, or pieces of chains, in input order
     /// chains[0] continues the last chain of the previous block: its start
-    /// equals that chain's end point.
+    /// equals that chain's end point. It holds at least one step unless the
+    /// previous block was cut for the size of its layout (docs/formats.md).
     bool continues = false;
     /// The last chain goes on in the next block.
     bool open = false;
     /// Format-private record of all non-step bytes; opaque to the container.
     /// An empty layout means the canonical rendering (for writing only).
+    /// Each layout is self-contained: a block renders without the others.
     std::string layout;
 };
 
@@ -64,9 +66,13 @@ public:
     BlockReader& operator=(BlockReader&&) noexcept;
 
     /// Feeds the next piece of input; `last` marks the end of the input.
-    /// Errors: Errc::syntax / Errc::not_a_step / Errc::limit with a message
-    /// "SOURCE:LINE:COLUMN: ..." (text formats) or "SOURCE: byte N: ..."
-    /// (steps). After an error the reader must not be used again.
+    /// Block boundaries depend only on the input and block_steps, not on how
+    /// the input is cut into pieces.
+    /// Errors: Errc::syntax / Errc::not_a_step / Errc::limit / Errc::overflow
+    /// (a coordinate beyond +-2^62) with a message "SOURCE:LINE:COLUMN: ..."
+    /// (text formats; the steps format accepts every byte);
+    /// Errc::invalid_argument when fed after `last`. After an error the
+    /// reader must not be used again (it repeats the error).
     Result<void> feed(std::string_view data, bool last);
 
     /// Moves the next finished block into `out`; false when none is ready.

@@ -21,6 +21,7 @@ enum : std::uint8_t {
     kIdle = 0x40,   // n idle ticks at the current DIR level
     kFlip = 0x80,   // bits 0-3: DIR bits of resting axes that flip on the next tick
     kLevel = 0xC0,  // bits 0-3: DIR level at the start of the block (first op only)
+    kPaced = 0xD0,  // varint g, varint n: n times (one step tick, then g idle ticks)
 };
 // Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
 constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
@@ -55,10 +56,58 @@ public:
     Result<void> feed(std::string_view data, bool last) override;
 
 private:
+    // Runs go through a small stage that folds repeated (1 step, g idle)
+    // pairs, the shape of a log sampled at a fixed tick rate, into kPaced.
     void flush_run() {
         if (run_n_ == 0) return;
-        put_count(layout_, run_kind_, run_n_);
+        const std::uint64_t n = run_n_;
         run_n_ = 0;
+        if (run_kind_ == kSteps) {
+            release_held();
+            if (n == 1) {
+                held_ = true;
+                return;
+            }
+            flush_pace();
+            put_count(layout_, kSteps, n);
+            return;
+        }
+        if (held_) {
+            held_ = false;
+            if (pace_n_ != 0 && pace_g_ == n && pace_n_ < kMaxRun) {
+                ++pace_n_;
+                return;
+            }
+            flush_pace();
+            pace_g_ = n;
+            pace_n_ = 1;
+            return;
+        }
+        flush_pace();
+        put_count(layout_, kIdle, n);
+    }
+    void flush_pace() {
+        if (pace_n_ == 1) {
+            put_count(layout_, kSteps, 1);
+            put_count(layout_, kIdle, pace_g_);
+        } else if (pace_n_ > 1) {
+            layout_.push_back(static_cast<char>(kPaced));
+            put_varint(layout_, pace_g_);
+            put_varint(layout_, pace_n_);
+        }
+        pace_n_ = 0;
+    }
+    void release_held() {
+        if (!held_) return;
+        held_ = false;
+        flush_pace();
+        put_count(layout_, kSteps, 1);
+    }
+    /// Everything pending into the layout.
+    void flush_all() {
+        flush_run();
+        release_held();
+        flush_pace();
     }
     void run(std::uint8_t kind) {
         if (run_n_ != 0 && (run_kind_ != kind || run_n_ == kMaxRun)) flush_run();
@@ -83,11 +132,14 @@ private:
     std::string layout_;
     std::uint8_t run_kind_ = kSteps;
     std::uint64_t run_n_ = 0;
+    bool held_ = false;            // a run of one step waits for its idle run
+    std::uint64_t pace_g_ = 0;     // pending kPaced: idle ticks per pair
+    std::uint64_t pace_n_ = 0;     // pending kPaced: pairs
     bool finished_ = false;
 };
 
 void StepsParser::cut(bool open) {
-    flush_run();
+    flush_all();
     Block b = std::move(blk_);
     b.axes = axes();
     for (Chain& c : b.chains) c.axes = b.axes;
@@ -109,6 +161,7 @@ void StepsParser::cut(bool open) {
 Result<void> StepsParser::feed(std::string_view data, bool last) {
     if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
     std::vector<Step>* steps = &blk_.chains.back().steps;
+    if (steps->capacity() == 0) steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
     for (const char ch : data) {
         const auto b = static_cast<std::uint8_t>(ch);
         const std::uint8_t stepping = b & kStepBits;
@@ -118,9 +171,10 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
         if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_.size() >= cap_) {
             cut(true);
             steps = &blk_.chains.back().steps;
+            steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
         }
         if (flip != 0) {
-            flush_run();
+            flush_all();
             layout_.push_back(static_cast<char>(kFlip | dir_to_mask(flip)));
         }
         if (stepping != 0) {
@@ -135,7 +189,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     }
     if (last) {
         finished_ = true;
-        flush_run();
+        flush_all();
         Block b = std::move(blk_);
         b.axes = axes();
         for (Chain& c : b.chains) c.axes = b.axes;
@@ -181,6 +235,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
         emit_steps(steps.size());
         return {};
     }
+    out.reserve(out.size() + steps.size());
     LayoutCursor lc(b.layout);
     bool first = true;
     while (!lc.done()) {
@@ -188,6 +243,18 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
         lc.byte(op);
         const std::uint8_t kind = op & 0xC0;
         const std::uint8_t arg = op & 0x3F;
+        if (op == kPaced) {
+            first = false;
+            std::uint64_t g = 0, n = 0;
+            if (!lc.varint(g) || !lc.varint(n) || g == 0 || g > kMaxRun || n < 2 || n > kMaxRun)
+                return corrupt("steps", "a bad paced run");
+            if (n > steps.size() - k) return corrupt("steps", "a run past the block's steps");
+            for (std::uint64_t j = 0; j < n; ++j) {
+                if (!emit_steps(1)) return corrupt("steps", "a flip on a stepping axis");
+                out.append(static_cast<std::size_t>(g), static_cast<char>(level));
+            }
+            continue;
+        }
         if (kind == kFlip || kind == kLevel) {
             if (arg == 0 || arg > 15) return corrupt("steps", "a bad DIR mask");
             if (kind == kLevel) {
