@@ -187,10 +187,27 @@ TEST(HpglRead, PlotterUnitsWithStepSize) {
     EXPECT_EQ(hpgl("PD40,80;", "0.025"), (Drawing{VectorPath{0, 0, {line_to(40, 80)}}}));
 }
 
+// What gnuplot's hpgl terminal writes: device-control escapes, scaling,
+// label instructions and labels; none of them adds or moves a stroke.
+TEST(HpglRead, AcceptsPlotterPreambleScalingAndLabels) {
+    const std::string text =
+        "\x1b.Y\n\x1b.I81;;17:\x1b.N;19:\x1b.M500:\nIN;\nSC0,10000,0,7500;\nSR0.2,0.4;\nDI0,1;\n"
+        "SP1;\nPU;PA195,120;\nPD;PA309,120;\nPU;PA105,105;\nLB-1\x03\nPU;PA10,20;PD;PA10,30;\n";
+    VectorReadOptions opt;
+    opt.source = "t.plt";
+    auto d = read_hpgl(text, opt);
+    ASSERT_TRUE(d) << d.error().message;
+    EXPECT_EQ(*d, (Drawing{VectorPath{195, 120, {line_to(309, 120)}},
+                           VectorPath{10, 20, {line_to(10, 30)}}}));
+    EXPECT_EQ(detect_vector_format(text), VectorFormat::hpgl);
+}
+
 TEST(HpglRead, EveryErrorNamesLineAndColumn) {
     const ErrorCase cases[] = {
         {"IN;CI5;", Errc::unsupported, "t.plt:1:4: unsupported instruction 'CI'"},
-        {"IN;\nSC0,100,0,100;", Errc::unsupported, "t.plt:2:1: unsupported instruction 'SC'"},
+        {"IN;\nAA0,100,90;", Errc::unsupported, "t.plt:2:1: unsupported instruction 'AA'"},
+        {"IN;LBtext", Errc::syntax, "t.plt:1:4: label (LB) not ended by ETX (0x03)"},
+        {"\x1b" "Y", Errc::syntax, "t.plt:1:1: ESC not followed by '.'"},
         {"PD1,2,3;", Errc::syntax, "t.plt:1:1: odd number of coordinates (3) in PD"},
         {"PD1,,2;", Errc::syntax, "t.plt:1:5: expected a number before ','"},
         {"PD1,2,;", Errc::syntax, "t.plt:1:7: expected a number after ','"},

@@ -139,6 +139,8 @@ std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept
     if (i >= head.size()) return std::nullopt;
     const char c0 = head[i];
     if (c0 == ';' || c0 == '(' || c0 == '%') return VectorFormat::gcode;
+    if (c0 == '\x1b' && i + 1 < head.size() && head[i + 1] == '.')
+        return VectorFormat::hpgl;  // an HP RS-232 device-control sequence opens the plot
     if (!std::isalpha(static_cast<unsigned char>(c0))) return std::nullopt;
     if (i + 1 < head.size() && std::isalpha(static_cast<unsigned char>(head[i + 1]))) {
         const char a = static_cast<char>(std::toupper(static_cast<unsigned char>(c0)));

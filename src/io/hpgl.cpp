@@ -64,6 +64,25 @@ Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& option
         const std::size_t m_line = cur.line, m_col = cur.column();
         const std::string at = vec::place(src, m_line, m_col);
         const char a = cur.peek();
+        if (a == '\x1b') {
+            // HP device-control sequence (ESC . letter [parameters] [:]) sent to
+            // the plotter's serial interface, not to the HP-GL interpreter.
+            cur.advance();
+            if (cur.done() || cur.peek() != '.')
+                return make_error(Errc::syntax, at + ": ESC not followed by '.'");
+            cur.advance();
+            if (cur.done())
+                return make_error(Errc::syntax, at + ": incomplete device-control sequence");
+            cur.advance();  // the function letter
+            std::size_t k = cur.pos;
+            while (k < text.size() && k - cur.pos < 64 &&
+                   (std::isdigit(static_cast<unsigned char>(text[k])) || text[k] == ';'))
+                ++k;
+            if (k < text.size() && text[k] == ':') {
+                while (cur.pos <= k) cur.advance();
+            }
+            continue;
+        }
         if (!std::isalpha(static_cast<unsigned char>(a)))
             return make_error(Errc::syntax,
                               at + ": unexpected character " + vec::describe_char(a));
@@ -74,6 +93,15 @@ Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& option
         std::string mnemonic{static_cast<char>(std::toupper(static_cast<unsigned char>(a))),
                              static_cast<char>(std::toupper(static_cast<unsigned char>(cur.peek())))};
         cur.advance();
+        if (mnemonic == "LB") {
+            // A label: text for the plotter's character generator, ended by
+            // ETX. Labels are not strokes of the drawing; they are skipped.
+            while (!cur.done() && cur.peek() != '\x03') cur.advance();
+            if (cur.done())
+                return make_error(Errc::syntax, at + ": label (LB) not ended by ETX (0x03)");
+            cur.advance();
+            continue;
+        }
 
         // Parameters: numbers separated by commas or spaces, up to ';', a
         // letter or the end.
@@ -119,15 +147,11 @@ Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& option
             continue;
         }
         if (mnemonic == "DF" || mnemonic == "SP" || mnemonic == "VS" || mnemonic == "LT" ||
-            mnemonic == "PW" || mnemonic == "PG")
-            continue;  // pen, speed, line style, page: no effect on the path
-        if (mnemonic == "SC" || mnemonic == "IP") {
-            if (!params.empty())
-                return make_error(Errc::unsupported,
-                                  at + ": unsupported instruction '" + mnemonic +
-                                      "' with parameters (scaling changes coordinates)");
-            continue;
-        }
+            mnemonic == "PW" || mnemonic == "PG" || mnemonic == "DI" || mnemonic == "DR" ||
+            mnemonic == "SR" || mnemonic == "SI" || mnemonic == "SL" || mnemonic == "CS")
+            continue;  // pen, speed, line style, page, label style: no effect on the path
+        if (mnemonic == "SC" || mnemonic == "IP")
+            continue;  // scaling: coordinates are taken as steps in user units (docs/cli.md)
         if (mnemonic != "PU" && mnemonic != "PD" && mnemonic != "PA" && mnemonic != "PR")
             return make_error(Errc::unsupported, at + ": unsupported instruction '" + mnemonic + "'");
         if (params.size() % 2 != 0)
