@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Regenerates every corpus file under corpora/ from Debian packages:
+#   hershey-fonts-data (Hershey stroke fonts), gnuplot-nox (HP-GL plots),
+#   fonts-dejavu-core (glyph outlines), libfreetype-dev (rendering).
+# Needs a built stepzip (build/stepzip) for the stepping of vectors.
+# Usage: corpora/tools/regenerate.sh [path/to/stepzip]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+stepzip=${1:-$root/build/stepzip}
+out=$root/corpora
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+apt_need=(hershey-fonts-data gnuplot-nox fonts-dejavu-core libfreetype-dev pkg-config g++)
+for p in "${apt_need[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
+    echo "missing Debian package: $p (apt-get install ${apt_need[*]})" >&2; exit 1; }
+done
+
+g++ -O2 -std=c++20 "$here/trace_glyphs.cpp" $(pkg-config --cflags --libs freetype2) -o "$tmp/trace_glyphs"
+g++ -O2 -std=c++20 -I"$root/include" "$here/stepper_stream.cpp" "$root"/src/core/*.cpp \
+    "$root/src/interpolate/linear.cpp" -o "$tmp/stepper_stream"
+
+hershey=/usr/share/hershey-fonts
+dejavu=/usr/share/fonts/truetype/dejavu
+mkdir -p "$out/plotter" "$out/glyphs" "$out/stepper" "$out/random"
+
+# Plotter streams: a Hershey specimen sheet and gnuplot's HP-GL plots,
+# stepped by each profile's own interpolator.
+python3 "$here/hershey_gcode.py" 5 $hershey/futural.jhf $hershey/rowmant.jhf \
+    $hershey/scripts.jhf $hershey/gothiceng.jhf $hershey/cyrillic.jhf $hershey/greek.jhf \
+    > "$tmp/hershey.gcode"
+(cd "$tmp" && gnuplot "$here/gnuplot_plots.gp")
+cp "$tmp/plots.hpgl" "$out/plotter/gnuplot.hpgl"
+for p in grbl marlin eval8 eval4 patent; do
+  "$stepzip" interpolate --profile $p "$tmp/hershey.gcode" -o "$out/plotter/hershey-$p.fc" -f
+done
+for p in grbl eval4; do
+  "$stepzip" interpolate --profile $p "$out/plotter/gnuplot.hpgl" -o "$out/plotter/gnuplot-$p.fc" -f
+done
+
+# Digitizer-like contours: glyph outlines rendered by FreeType and traced.
+for c in 8 4; do
+  : > "$out/glyphs/dejavu-$c.fc"
+  for f in DejaVuSans DejaVuSerif DejaVuSansMono; do
+    for px in 16 32 64; do
+      "$tmp/trace_glyphs" $dejavu/$f.ttf $px $c 33 255 | sed "s|$dejavu/||" >> "$out/glyphs/dejavu-$c.fc"
+    done
+  done
+done
+
+# A four-axis stepper stream (X, Y, Z, A) of an engraving job.
+python3 "$here/engrave_path.py" 5 $hershey/futural.jhf $hershey/scripts.jhf > "$tmp/path.txt"
+"$tmp/stepper_stream" < "$tmp/path.txt" > "$out/stepper/engrave-4axis.steps"
+
+# The worst case: random walks.
+python3 "$here/random_walk.py" 8 100000 1 > "$out/random/walk-8.fc"
+python3 "$here/random_walk.py" 4 100000 2 > "$out/random/walk-4.fc"
+
+ls -l "$out"/*/
