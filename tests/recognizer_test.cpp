@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <optional>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "stepzip/profile.hpp"
@@ -173,6 +174,79 @@ TEST(Recognizer, GrblAndMarlinLinesAreOneEval8Segment) {
                 ASSERT_TRUE(segment_steps(steps, axes, src, SegmenterKind::greedy, out).ok());
                 ASSERT_EQ(out.size(), 1u);
                 EXPECT_EQ(out[0], default_segment(src, delta, axes));
+            }
+}
+
+// The greedy segmenter reads whole runs of identical steps at once; its answer
+// must be that of the letter-by-letter recognizer: at every start of random
+// chains made of long lines (long runs), near-lines, walks with repeated
+// codes, sign changes and 3-6 axes.
+std::int64_t longest_letter_by_letter(Profile p, int axes, std::span<const Step> steps) {
+    SegmentRecognizer rec(p, axes);
+    std::int64_t best = 1;
+    for (Step s : steps) {
+        if (!rec.can_extend(s) || !rec.extend(s)) break;
+        if (rec.valid()) best = rec.length();
+    }
+    return best;
+}
+
+std::vector<Step> mixed_chain(std::mt19937_64& rng, Profile p, int axes, std::size_t n) {
+    std::vector<Step> steps;
+    const bool eight = profile_eight_connected(p);
+    while (steps.size() < n) {
+        const int kind = static_cast<int>(rng() % 3);
+        if (kind == 0) {  // a line at a random phase, maybe long
+            Point d{};
+            const int span = rng() % 4 == 0 ? 400 : 30;
+            for (int i = 0; i < axes; ++i) d[i] = std::uniform_int_distribution<int>(-span, span)(rng);
+            if (!eight) d[1] = d[1] == 0 && d[0] == 0 ? 1 : d[1];
+            bool any = false;
+            for (int i = 0; i < axes; ++i) any = any || d[i] != 0;
+            if (!any) d[0] = 1;
+            Segment seg = default_segment(p, d, axes);
+            for (int j = 0; j < phase_count(p, axes); ++j) {
+                const auto ab = *phase_arguments(p, seg, axes, j);
+                const PhaseRange r = phase_range(p, ab.first, ab.second);
+                seg.phase[j] = std::uniform_int_distribution<std::int64_t>(r.lo, r.hi - 1)(rng);
+            }
+            expand_segment(p, seg, axes, steps);
+        } else if (kind == 1 && !steps.empty()) {  // perturb a few recent ticks
+            for (int f = 0; f < 2; ++f) {
+                const auto k = steps.size() - 1 - rng() % std::min<std::size_t>(steps.size(), 50);
+                const int axis = static_cast<int>(rng() % static_cast<unsigned>(axes));
+                Step t = static_cast<Step>(steps[k] ^ (1u << (2 * axis)));
+                t = static_cast<Step>(t & ~(((~t) & (1u << (2 * axis))) << 1));  // no DIR on a rest
+                if (step_valid(t, axes) && (eight || step_weight(t) == 1)) steps[k] = t;
+            }
+        } else {  // runs of one code
+            int d[kMaxAxes] = {};
+            if (eight) {
+                for (int i = 0; i < axes; ++i) d[i] = static_cast<int>(rng() % 3) - 1;
+                d[0] = d[0] == 0 ? 1 : d[0];
+            } else {
+                d[rng() % 2] = rng() % 2 ? 1 : -1;
+            }
+            const std::size_t len = 1 + rng() % 12;
+            steps.insert(steps.end(), len, make_step(d, axes));
+        }
+    }
+    steps.resize(n);
+    return steps;
+}
+
+TEST(Recognizer, RunByRunGreedyMatchesLetterByLetter) {
+    std::mt19937_64 rng(11);
+    for (Profile p : {Profile::eval4, Profile::eval8, Profile::grbl, Profile::marlin})
+        for (int axes = 2; axes <= profile_max_axes(p); ++axes)
+            for (int rep = 0; rep < 4; ++rep) {
+                const auto steps = mixed_chain(rng, p, axes, 1500);
+                const GreedySegmenter greedy(p, axes);
+                for (std::size_t s = 0; s < steps.size(); ++s) {
+                    const auto rest = std::span<const Step>(steps).subspan(s);
+                    ASSERT_EQ(greedy.longest(rest), longest_letter_by_letter(p, axes, rest))
+                        << profile_name(p) << " axes " << axes << " rep " << rep << " start " << s;
+                }
             }
 }
 

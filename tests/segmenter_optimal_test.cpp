@@ -3,10 +3,14 @@
 // uses more segments than greedy.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "stepzip/profile.hpp"
+#include "stepzip/segment/recognizer.hpp"
+#include "stepzip/segment/segmenters.hpp"
 #include "stepzip/segmenter.hpp"
 
 namespace stepzip {
@@ -121,6 +125,66 @@ TEST(OptimalSegmenter, NeverMoreSegmentsThanGreedyOnLongChains) {
             const std::size_t opt = count(p, SegmenterKind::optimal, steps);
             const std::size_t greedy = count(p, SegmenterKind::greedy, steps);
             ASSERT_LE(opt, greedy) << profile_name(p) << " rep " << rep;
+        }
+    }
+}
+
+// The optimal segmenter enumerates exact ends run by run; its count must equal
+// a shortest path whose edges come from the letter-by-letter recognizer (every
+// exact end within kOptimalWindow of each start, plus the greedy cut), on
+// polylines with long lines and on near-lines with flipped ticks.
+std::size_t reference_optimal(Profile p, const std::vector<Step>& steps) {
+    const std::size_t n = steps.size();
+    std::vector<std::size_t> dist(n + 1, n + 1);
+    dist[0] = 0;
+    std::vector<std::size_t> greedy_end(n, 0);
+    const GreedySegmenter greedy(p, 2);
+    for (std::size_t pos = 0; pos < n;)
+        pos = greedy_end[pos] = pos + static_cast<std::size_t>(greedy.longest(
+                                          std::span<const Step>(steps).subspan(pos)));
+    SegmentRecognizer rec(p, 2);
+    for (std::size_t s = 0; s < n; ++s) {
+        if (greedy_end[s] != 0) dist[greedy_end[s]] = std::min(dist[greedy_end[s]], dist[s] + 1);
+        rec.reset();
+        const std::size_t lim = std::min(n, s + static_cast<std::size_t>(kOptimalWindow));
+        for (std::size_t e = s; e < lim; ++e) {
+            if (!rec.can_extend(steps[e]) || !rec.extend(steps[e])) break;
+            if (rec.valid()) dist[e + 1] = std::min(dist[e + 1], dist[s] + 1);
+        }
+    }
+    return dist[n];
+}
+
+TEST(OptimalSegmenter, RunByRunEnumerationMatchesLetterByLetter) {
+    std::mt19937_64 rng(33);
+    for (Profile p : {Profile::eval4, Profile::eval8, Profile::grbl, Profile::marlin}) {
+        const bool eight = profile_eight_connected(p);
+        for (int rep = 0; rep < 6; ++rep) {
+            std::vector<Step> steps;
+            while (steps.size() < 3000) {
+                Point d{};
+                const int span = rep % 3 == 0 ? 1500 : 60;
+                d[0] = std::uniform_int_distribution<int>(-span, span)(rng);
+                d[1] = std::uniform_int_distribution<int>(-span, span)(rng);
+                if (d[0] == 0 && d[1] == 0) continue;
+                Segment seg = default_segment(p, d, 2);
+                const auto ab = *phase_arguments(p, seg, 2, 0);
+                const PhaseRange r = phase_range(p, ab.first, ab.second);
+                seg.phase[0] = std::uniform_int_distribution<std::int64_t>(r.lo, r.hi - 1)(rng);
+                const std::size_t from = steps.size();
+                expand_segment(p, seg, 2, steps);
+                if (rep % 2 && steps.size() > from + 2) {  // flip one tick inside the line
+                    const auto k = std::uniform_int_distribution<std::size_t>(from, steps.size() - 1)(rng);
+                    if (eight) {
+                        const Step t = static_cast<Step>(steps[k] ^ 0x4);  // toggle the y step
+                        if (step_valid(t, 2) && (t & 0x8) == 0) steps[k] = t;
+                    } else if (steps[k] == steps[from]) {
+                        steps[k] = steps.back();
+                    }
+                }
+            }
+            ASSERT_EQ(count(p, SegmenterKind::optimal, steps), reference_optimal(p, steps))
+                << profile_name(p) << " rep " << rep;
         }
     }
 }

@@ -1,6 +1,7 @@
 // Fitting one exact segment to a run of steps, with the phase nearest the
 // profile's default (SPEC §3, §4). Complexity: O(steps · axes).
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 #include <limits>
 
@@ -14,30 +15,50 @@ constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
 
 // Signs fixed per segment; fills delta. False on a sign change or an empty run.
 bool totals(std::span<const Step> steps, int axes, Point& delta) {
-    int sign[kMaxAxes] = {};
+    // Per axis: how many ticks moved it; the OR of all steps tells the signs
+    // (both DIR values seen on a moving axis = a sign change).
+    std::int64_t count[kMaxAxes] = {};
+    unsigned neg_seen = 0, pos_seen = 0;
+    const std::size_t n = steps.size();
+    for (std::size_t k = 0; k < n;) {
+        std::size_t e = k + 1;
+        while (e < n && steps[e] == steps[k]) ++e;
+        const unsigned s = steps[k];
+        const auto len = static_cast<std::int64_t>(e - k);
+        for (int i = 0; i < axes; ++i) count[i] += len * ((s >> (2 * i)) & 1u);
+        neg_seen |= s & (s >> 1) & 0x555u;
+        pos_seen |= s & ~(s >> 1) & 0x555u;
+        k = e;
+    }
+    if (neg_seen & pos_seen) return false;
     delta = {};
-    for (Step s : steps)
-        for (int i = 0; i < axes; ++i) {
-            const int d = step_axis(s, i);
-            if (d == 0) continue;
-            if (sign[i] != 0 && sign[i] != d) return false;
-            sign[i] = d;
-            delta[i] += d;
-        }
-    return !steps.empty();
+    for (int i = 0; i < axes; ++i) delta[i] = ((neg_seen >> (2 * i)) & 1u) ? -count[i] : count[i];
+    return n != 0;
 }
 
 // Interval [lo, hi) of phases that produce the word letter(0..n-1) under the
 // two-letter rule with counts (a, b) = (#zeros, #ones); empty when lo >= hi.
+// The letters come from runs of identical steps: inside a run of zeros the
+// bound p·b - q·a grows with p, inside a run of ones it falls with q, so only
+// a run's last letter matters (O(1) per run).
 template <class Letter>
-std::pair<std::int64_t, std::int64_t> word_phases(std::size_t n, Letter letter, std::int64_t a,
-                                                  std::int64_t b) {
+std::pair<std::int64_t, std::int64_t> word_phases(std::span<const Step> steps, Letter letter,
+                                                  std::int64_t a, std::int64_t b) {
     std::int64_t lo = -kInf, hi = kInf, p = 0, q = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::int64_t g = p * b - q * a;
-        if (letter(k) == 0) { lo = std::max(lo, g); ++p; }
-        else { hi = std::min(hi, g); ++q; }
+    const std::size_t n = steps.size();
+    for (std::size_t k = 0; k < n;) {
+        std::size_t e = k + 1;
+        while (e < n && steps[e] == steps[k]) ++e;
+        const auto len = static_cast<std::int64_t>(e - k);
+        if (letter(steps[k]) == 0) {
+            lo = std::max(lo, (p + len - 1) * b - q * a);
+            p += len;
+        } else {
+            hi = std::min(hi, p * b - (q + len - 1) * a);
+            q += len;
+        }
         if (lo >= hi) break;
+        k = e;
     }
     return {lo, hi};
 }
@@ -53,7 +74,7 @@ std::optional<std::int64_t> pick(Profile p, std::int64_t a, std::int64_t b, std:
 
 std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta) {
     for (Step s : steps)
-        if (step_weight(s) != 1) return std::nullopt;
+        if (std::popcount(s & 0x555u) != 1) return std::nullopt;
     const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
     Segment seg;
     seg.delta = delta;
@@ -61,9 +82,7 @@ std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta
         seg.phase[0] = default_phase(Profile::eval4, a, b);
         return seg;
     }
-    auto [lo, hi] = word_phases(steps.size(),
-                                [&](std::size_t k) { return step_axis(steps[k], 0) != 0 ? 0 : 1; },
-                                a, b);
+    auto [lo, hi] = word_phases(steps, [](Step s) { return (s & 1u) != 0 ? 0 : 1; }, a, b);
     const auto f = pick(Profile::eval4, a, b, lo, hi);
     if (!f) return std::nullopt;
     seg.phase[0] = *f;
@@ -85,9 +104,8 @@ std::optional<Segment> fit_leading(Profile p, std::span<const Step> steps, int a
             seg.phase[j++] = default_phase(p, l, s);
             continue;
         }
-        auto [lo, hi] = word_phases(steps.size(),
-                                    [&](std::size_t k) { return step_axis(steps[k], i) != 0 ? 1 : 0; },
-                                    l - s, s);
+        auto [lo, hi] = word_phases(
+            steps, [i](Step t) { return static_cast<int>((t >> (2 * i)) & 1u); }, l - s, s);
         const auto f = pick(p, l, s, lo, hi);
         if (!f) return std::nullopt;
         seg.phase[j++] = *f;
@@ -101,7 +119,7 @@ std::optional<Segment> fit_leading(Profile p, std::span<const Step> steps, int a
 // F0 < -f and a free y-step needs F0 >= -f: one linear constraint per step.
 std::optional<Segment> fit_patent(std::span<const Step> steps, const Point& delta) {
     for (Step s : steps)
-        if (step_weight(s) != 1) return std::nullopt;
+        if (std::popcount(s & 0x555u) != 1) return std::nullopt;
     const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
     std::int64_t x = a, y = b, f = 0, lo = -kInf, hi = kInf;
     for (Step s : steps) {

@@ -4,6 +4,7 @@
 
 #include "stepzip/segment/recognizer.hpp"
 #include "internal.hpp"
+#include "run_word.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
 namespace stepzip {
@@ -46,32 +47,55 @@ bool patent_prefix_exact(std::span<const Step> steps, std::int64_t m, std::int64
     return true;
 }
 
-std::int64_t GreedySegmenter::longest(std::span<const Step> steps) const {
-    if (steps.empty()) return 0;
-    if (profile_ == Profile::patent) {
-        const std::int64_t reach = patent_reach(steps, kPatentMaxSegment);
-        std::vector<std::int64_t> xs(static_cast<std::size_t>(reach) + 1, 0);
-        for (std::int64_t k = 0; k < reach; ++k)
-            xs[k + 1] = xs[k] + (step_axis(steps[static_cast<std::size_t>(k)], 0) != 0);
-        for (std::int64_t m = reach; m > 1; --m)
-            if (patent_prefix_exact(steps, m, xs[m], m - xs[m])) return m;
-        return 1;
-    }
-    SegmentRecognizer rec(profile_, axes_);
+namespace {
+
+// Longest exact segment at steps[0] under a linear profile, read run by run
+// (see run_word.hpp); `rec` is scratch state reused across calls.
+std::int64_t longest_linear(detail::RunSegment& rec, std::span<const Step> steps) {
+    rec.reset();
+    const std::size_t n = steps.size();
     std::int64_t best = 1;
-    for (Step s : steps) {
-        if (!rec.can_extend(s)) break;
-        if (!rec.extend(s)) break;
-        if (rec.valid()) best = rec.length();
+    std::size_t pos = 0;
+    while (pos < n) {
+        const Step s = steps[pos];
+        std::size_t e = pos + 1;
+        while (e < n && steps[e] == s) ++e;
+        const auto k = static_cast<std::int64_t>(e - pos);
+        const auto r = rec.probe(s, k);
+        if (r.lo <= r.hi) best = rec.length() + r.hi;
+        if (r.alive < k) break;
+        rec.commit(s, k);
+        pos = e;
     }
     return best;
 }
 
+std::int64_t longest_patent(std::span<const Step> steps) {
+    const std::int64_t reach = patent_reach(steps, kPatentMaxSegment);
+    std::vector<std::int64_t> xs(static_cast<std::size_t>(reach) + 1, 0);
+    for (std::int64_t k = 0; k < reach; ++k)
+        xs[k + 1] = xs[k] + (step_axis(steps[static_cast<std::size_t>(k)], 0) != 0);
+    for (std::int64_t m = reach; m > 1; --m)
+        if (patent_prefix_exact(steps, m, xs[m], m - xs[m])) return m;
+    return 1;
+}
+
+}  // namespace
+
+std::int64_t GreedySegmenter::longest(std::span<const Step> steps) const {
+    if (steps.empty()) return 0;
+    if (profile_ == Profile::patent) return longest_patent(steps);
+    detail::RunSegment rec(profile_, axes_);
+    return longest_linear(rec, steps);
+}
+
 void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out) const {
+    const bool patent = profile_ == Profile::patent;
+    detail::RunSegment rec(patent ? Profile::eval4 : profile_, axes_);
     std::size_t pos = 0;
     while (pos < steps.size()) {
         const auto rest = steps.subspan(pos);
-        auto m = static_cast<std::size_t>(longest(rest));
+        auto m = static_cast<std::size_t>(patent ? longest_patent(rest) : longest_linear(rec, rest));
         auto seg = fit_segment(profile_, rest.first(m), axes_);
         assert(seg.has_value());
         // Never reached when the recognizer is right (the tests check it):

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "internal.hpp"
+#include "run_word.hpp"
 #include "stepzip/segment/recognizer.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
@@ -35,7 +36,15 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
     const bool patent = profile_ == Profile::patent;
     const std::size_t window =
         static_cast<std::size_t>(patent ? kPatentOptimalWindow : kOptimalWindow);
-    SegmentRecognizer rec(patent ? Profile::eval4 : profile_, axes_);
+    // End of the run of identical steps containing each position.
+    std::vector<std::uint32_t> run_end;
+    if (!patent) {
+        run_end.resize(n);
+        for (std::size_t i = n; i-- > 0;)
+            run_end[i] = static_cast<std::uint32_t>(
+                i + 1 < n && steps[i + 1] == steps[i] ? run_end[i + 1] : i + 1);
+    }
+    detail::RunSegment rec(patent ? Profile::eval4 : profile_, axes_);
     for (std::size_t s = 0; s < n; ++s) {
         assert(dist[s] != kUnreached);  // every single step is a segment
         if (greedy_end[s] != 0) relax(s, greedy_end[s]);
@@ -50,10 +59,24 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
             }
             continue;
         }
+        // Every exact end from s, run by run: each run contributes an
+        // interval of ends.
         rec.reset();
-        for (std::size_t e = s; e < lim; ++e) {
-            if (!rec.can_extend(steps[e]) || !rec.extend(steps[e])) break;
-            if (rec.valid()) relax(s, e + 1);
+        const std::uint32_t next = dist[s] + 1;
+        for (std::size_t pos = s; pos < lim;) {
+            const std::size_t e = std::min<std::size_t>(run_end[pos], lim);
+            const auto k = static_cast<std::int64_t>(e - pos);
+            const auto r = rec.probe(steps[pos], k);
+            for (std::int64_t m = r.lo; m <= r.hi; ++m) {
+                const std::size_t end = pos + static_cast<std::size_t>(m);
+                if (next < dist[end]) {
+                    dist[end] = next;
+                    from[end] = s;
+                }
+            }
+            if (r.alive < k) break;
+            rec.commit(steps[pos], k);
+            pos = e;
         }
     }
 
