@@ -7,6 +7,7 @@
 // steps (after the step size, if any, has been applied by the reader).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,6 +16,8 @@
 
 #include "stepzip/chain.hpp"
 #include "stepzip/error.hpp"
+#include "stepzip/interpolate/arc.hpp"
+#include "stepzip/interpolate/feedrate.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
 #include "stepzip/segmenter.hpp"
@@ -40,6 +43,10 @@ struct VectorMove {
     std::int64_t cx = 0, cy = 0;  ///< arc centre (arcs only; 0 for lines)
     std::uint32_t line = 0;       ///< 1-based source line of the move (0: not from a file)
     std::uint32_t column = 0;     ///< 1-based source column of the move's first word
+    /// Feed for the G-code writer: an F word in units per minute (steps, or
+    /// millimetres with a step size); 0 writes none. Readers leave it 0 and
+    /// comparisons ignore it.
+    double feed = 0;
     friend bool operator==(const VectorMove& a, const VectorMove& b) {
         return a.kind == b.kind && a.x == b.x && a.y == b.y && a.cx == b.cx && a.cy == b.cy;
     }
@@ -146,9 +153,34 @@ struct GcodeWriteOptions {
 /// G-code text: a header comment, G90 (or G91) and G21 when a step size is
 /// given, then per path a G0 to its start and one G1 / G2 / G3 per move with
 /// integer (or exact decimal) X Y words; arcs carry I J relative to their
-/// start. Reading the text back with the same step size gives `drawing`
+/// start. A move with a feed gets an F word (G94, units per minute, three
+/// decimals) when it differs from the last one written (F is modal); G94 is
+/// then written in the header. Reading the text back with the same step size gives `drawing`
 /// again (apart from moves that go nowhere). Thread-safe.
 std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options = {});
+
+/// Options of interpolate_drawing().
+struct DrawingInterpolation {
+    Profile profile = Profile::eval8;  ///< lines: the profile's interpolator at its default phase
+    std::optional<LineMethod> line_method;  ///< set: lines by DDA or constant carrier instead
+    /// Arcs (G2 / G3); nullopt: evaluation for the 4-connected profiles,
+    /// accelerated for the 8-connected ones.
+    std::optional<ArcMethod> arc_method;
+    std::size_t max_steps = std::size_t{1} << 28;  ///< total output steps refused beyond this
+    std::string source = "<input>";                ///< names the input in error messages
+};
+
+/// Forward interpolation of a drawing: one two-axis chain per path that
+/// produces steps, starting at the path's start. Lines use the profile's
+/// interpolator at its default phase, so segment_steps() under the same
+/// profile finds each line again as one segment (or fewer, merged).
+/// Errors ("SOURCE:LINE:COLUMN: ..." for moves read from a file):
+/// Errc::limit (a line longer than kMaxSegmentTotal, output beyond
+/// max_steps), Errc::invalid_argument from the line and arc interpolators
+/// (coordinates beyond kMaxInterpolateCoord, an arc end off its circle).
+/// Thread-safe. Complexity: O(steps).
+Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
+                                               const DrawingInterpolation& options = {});
 
 /// HP-GL text: "IN;SP1;" then per path "PU x0,y0;PD x1,y1,...;" and
 /// "PU;SP0;" at the end; coordinates are steps (absolute).
@@ -170,6 +202,32 @@ struct SegmentedChain {
 /// steps, one line move per segment (its end point), starting at the chain's
 /// start. Errors: Errc::unsupported for a chain that is not two-axis.
 Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains);
+
+/// Feed words for G-code output, from the feed-rate block (seed 000, see
+/// interpolate/feedrate.hpp): the steps of a chain are timed by
+/// feed_times(steps, 2, steps_per_second, factor), i.e. ticks of 1/V seconds
+/// stretched by 1.41 after a diagonal step. A segment takes the time between
+/// the stamp of its last step and that of the step before its first (0 for
+/// a chain's first segment); its F word is its straight length divided by
+/// that time, in steps per minute, or millimetres per minute with a step
+/// size, so a controller in G94 mode at that F finishes the segment in the
+/// time the step stream took. Along a run F = 60·V; along a diagonal it is
+/// about 60·V too (√2 / 1.41).
+struct FeedOptions {
+    double steps_per_second = 0;        ///< V, the feed-rate block's tick rate (> 0)
+    AxisFactor factor = AxisFactor::seed;
+    std::optional<StepSize> step_size;  ///< F in mm/min instead of steps/min
+};
+
+/// As segments_to_drawing(), with each move's `feed` set as FeedOptions
+/// describes. A segment is matched to its steps by walking the chain from
+/// the previous segment's end until its end point is reached (segments are
+/// monotone per axis, so this also works for the patent mode's end points).
+/// Errors: as segments_to_drawing(); Errc::invalid_argument for a feed rate
+/// that is not positive and finite, or segments whose end points the chain
+/// does not pass through in order.
+Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains,
+                                    const FeedOptions& feed);
 
 /// How a segment looks, for colouring: an axis-parallel run, a 45° diagonal,
 /// or a general slope.

@@ -23,10 +23,6 @@ namespace {
 /// Largest number of steps one run may produce (2 bytes each in memory).
 constexpr std::size_t kMaxOutputSteps = std::size_t{1} << 28;
 
-std::string move_place(const std::string& source, const VectorMove& m) {
-    return source + ":" + std::to_string(m.line) + ":" + std::to_string(m.column);
-}
-
 }  // namespace
 
 int cmd_interpolate(const std::vector<std::string>& args) {
@@ -123,60 +119,16 @@ int cmd_interpolate(const std::vector<std::string>& args) {
     if (!drawing) return report(drawing.error());
 
     // Forward interpolation, one chain per path.
-    std::vector<Chain> chains;
-    std::size_t total = 0;
-    Progress progress("interpolate", drawing->size());
-    for (std::size_t p = 0; p < drawing->size(); ++p) {
-        progress.update(p);
-        const VectorPath& path = (*drawing)[p];
-        Chain chain;
-        chain.axes = 2;
-        chain.start = {path.x0, path.y0};
-        std::int64_t x = path.x0, y = path.y0;
-        for (const VectorMove& m : path.moves) {
-            const std::size_t before = chain.steps.size();
-            if (m.kind == MoveKind::line) {
-                if (line_method) {
-                    auto r = interpolate_line(*line_method, m.x - x, m.y - y, chain.steps);
-                    if (!r)
-                        return report(make_error(r.error().code,
-                                                 move_place(read_options.source, m) + ": " +
-                                                     r.error().message));
-                } else {
-                    const Segment seg = default_segment(*profile, Point{m.x - x, m.y - y}, 2);
-                    auto r = check_segment(*profile, seg, 2);
-                    if (!r)
-                        return report(make_error(r.error().code,
-                                                 move_place(read_options.source, m) + ": " +
-                                                     r.error().message));
-                    if (total + static_cast<std::size_t>(
-                                    segment_length(seg.delta, 2,
-                                                   profile_eight_connected(*profile))) >
-                        kMaxOutputSteps)
-                        return report(make_error(Errc::limit,
-                                                 move_place(read_options.source, m) +
-                                                     ": output would exceed 2^28 steps"));
-                    expand_segment(*profile, seg, 2, chain.steps);
-                }
-            } else {
-                auto r = interpolate_arc(arc_method, x - m.cx, y - m.cy, m.x - m.cx, m.y - m.cy,
-                                         m.kind == MoveKind::arc_ccw, chain.steps);
-                if (!r)
-                    return report(make_error(r.error().code, move_place(read_options.source, m) +
-                                                                 ": " + r.error().message));
-            }
-            total += chain.steps.size() - before;
-            if (total > kMaxOutputSteps)
-                return report(make_error(Errc::limit, move_place(read_options.source, m) +
-                                                          ": output would exceed 2^28 steps"));
-            x = m.x;
-            y = m.y;
-        }
-        if (!chain.steps.empty()) chains.push_back(std::move(chain));
-    }
-    progress.finish();
+    DrawingInterpolation how;
+    how.profile = *profile;
+    how.line_method = line_method;
+    how.arc_method = arc_method;
+    how.max_steps = kMaxOutputSteps;
+    how.source = read_options.source;
+    auto chains = interpolate_drawing(*drawing, how);
+    if (!chains) return report(chains.error());
 
-    auto text = write_chains(*to, chains);
+    auto text = write_chains(*to, *chains);
     if (!text) return report(text.error());
     auto out = OutputFile::open(out_path, force);
     if (!out) return report(out.error());

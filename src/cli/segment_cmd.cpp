@@ -2,7 +2,9 @@
 // reverse interpolation (SPEC §6).
 #include <boost/program_options.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -64,7 +66,7 @@ int cmd_segment(const std::vector<std::string>& args) {
         "Unit-step chains -> vectors by reverse interpolation.\n"
         "Options");
     std::string input, format_arg, segmenter_arg = "greedy", profile_arg, to_arg, out_arg,
-                                   step_arg;
+                                   step_arg, feed_arg, feed_factor_arg = "seed";
     desc.add_options()
         ("help,h", "show this help")
         ("to", po::value(&to_arg), "output: gcode, hpgl, svg or json (required)")
@@ -81,6 +83,12 @@ int cmd_segment(const std::vector<std::string>& args) {
         ("force,f", "overwrite an existing output")
         ("relative", "G-code: incremental coordinates (G91)")
         ("step-size", po::value(&step_arg), "G-code: write millimetres at this many mm per step")
+        ("feed", po::value(&feed_arg),
+         "G-code: F words from the feed-rate block at V steps per second (each segment's "
+         "length over the time its steps take; steps/min, or mm/min with --step-size)")
+        ("feed-factor", po::value(&feed_factor_arg),
+         "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
+         "(x sqrt 2)")
         ("quiet,q", "no notes on stderr");
     po::options_description hidden;
     hidden.add_options()("input", po::value(&input));
@@ -126,6 +134,22 @@ int cmd_segment(const std::vector<std::string>& args) {
         auto s = parse_step_size(step_arg);
         if (!s) return usage_error("segment: " + s.error().message);
         gcode_options.step_size = *s;
+    }
+    std::optional<FeedOptions> feed;
+    if (!feed_arg.empty()) {
+        if (*to != VectorOut::gcode) return usage_error("segment: --feed needs --to gcode");
+        char* end = nullptr;
+        const double v = std::strtod(feed_arg.c_str(), &end);
+        if (end == feed_arg.c_str() || *end != '\0' || !(v > 0) || !std::isfinite(v))
+            return usage_error("segment: --feed wants a positive number of steps per second, "
+                               "not '" + feed_arg + "'");
+        feed.emplace();
+        feed->steps_per_second = v;
+        feed->step_size = gcode_options.step_size;
+        if (feed_factor_arg == "exact")
+            feed->factor = AxisFactor::exact;
+        else if (feed_factor_arg != "seed")
+            return usage_error("segment: unknown --feed-factor '" + feed_factor_arg + "'");
     }
     const bool quiet = vm.count("quiet") > 0;
     const std::string out_path = vm.count("stdout") ? std::string("-") : out_arg;
@@ -192,7 +216,8 @@ int cmd_segment(const std::vector<std::string>& args) {
     switch (*to) {
         case VectorOut::gcode:
         case VectorOut::hpgl: {
-            auto drawing = segments_to_drawing(cut_chains);
+            auto drawing = feed ? segments_to_drawing(cut_chains, *feed)
+                                : segments_to_drawing(cut_chains);
             if (!drawing) return report(make_error(drawing.error().code,
                                                    source + ": " + drawing.error().message));
             text = *to == VectorOut::gcode ? Result<std::string>(write_gcode(*drawing, gcode_options))

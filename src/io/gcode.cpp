@@ -5,6 +5,7 @@
 // units and distance mode first, then the motion. Complexity: O(bytes).
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -262,14 +263,32 @@ std::string coord_text(std::int64_t steps, const std::optional<StepSize>& step) 
     return vec::format_e12(i128{steps} * step->mm_e12);
 }
 
+
+// A feed in units per minute with three decimals, trailing zeros dropped.
+std::string feed_text(double f) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f", f);
+    std::string t = buf;
+    while (!t.empty() && t.back() == '0') t.pop_back();
+    if (!t.empty() && t.back() == '.') t.pop_back();
+    return t;
+}
+
 }  // namespace
 
 std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options) {
+    bool feeds = false;
+    for (const VectorPath& path : drawing)
+        for (const VectorMove& m : path.moves) feeds = feeds || m.feed > 0;
     std::string out;
     out += "; stepzip vectors: " + std::to_string(drawing.size()) + " path(s), coordinates in ";
-    out += options.step_size ? "mm\n" : "steps\n";
+    out += options.step_size ? "mm" : "steps";
+    if (feeds) out += options.step_size ? ", feed in mm/min" : ", feed in steps/min";
+    out += "\n";
     out += options.relative ? "G91\n" : "G90\n";
     if (options.step_size) out += "G21\n";
+    if (feeds) out += "G94\n";
+    std::string last_feed;
     std::int64_t cx = 0, cy = 0;  // current position in steps
     auto xy = [&](std::int64_t x, std::int64_t y) {
         const std::int64_t ox = options.relative ? x - cx : x;
@@ -290,6 +309,11 @@ std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options
             if (m.kind != MoveKind::line)
                 out += " I" + coord_text(m.cx - cx, options.step_size) + " J" +
                        coord_text(m.cy - cy, options.step_size);
+            if (m.feed > 0) {
+                std::string f = feed_text(m.feed);
+                if (f != last_feed) out += " F" + f;
+                last_feed = std::move(f);
+            }
             out += "\n";
             cx = m.x;
             cy = m.y;
