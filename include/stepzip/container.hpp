@@ -64,9 +64,11 @@ struct FrameInfo {
     int axes = 2;
     std::uint64_t blocks = 0;           ///< data blocks (both kinds)
     std::uint64_t raw_blocks = 0;       ///< blocks carried as zstd of their bytes
+    std::uint64_t segment_model_blocks = 0;  ///< blocks coded by the segment model
+    std::uint64_t step_model_blocks = 0;     ///< blocks coded by the step model
     std::uint64_t chains = 0;           ///< chains in chain blocks (a chain split across blocks counts once)
     std::uint64_t steps = 0;            ///< steps in chain blocks
-    std::uint64_t segments = 0;         ///< segments in chain blocks
+    std::uint64_t segments = 0;         ///< segments in chain blocks (none in step-model blocks)
     std::uint64_t decoded_bytes = 0;    ///< size of the original input
     std::uint64_t compressed_bytes = 0; ///< size of the frame
     std::uint64_t checksum = 0;         ///< XXH64 (seed 0) of the decoded bytes

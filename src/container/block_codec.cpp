@@ -305,6 +305,17 @@ std::string make_block_record(unsigned type, unsigned flags, std::string_view ra
     return rec;
 }
 
+std::string make_stored_record(unsigned type, unsigned flags, std::string_view payload) {
+    std::string rec;
+    put_u8(rec, type);
+    put_u8(rec, flags);
+    put_le(rec, payload.size(), 4);
+    put_le(rec, payload.size(), 4);
+    rec += payload;
+    put_le(rec, check32(rec), 4);
+    return rec;
+}
+
 Result<std::string> unzstd(std::string_view compressed, std::uint32_t dsize, const std::string& where) {
     const unsigned long long declared = ZSTD_getFrameContentSize(compressed.data(), compressed.size());
     if (declared == ZSTD_CONTENTSIZE_ERROR || declared != dsize)

@@ -22,7 +22,7 @@ inline constexpr std::size_t kBlockChecksumSize = 4;
 /// After the end mark: decoded size, three statistics, trailer check, content XXH64.
 inline constexpr std::size_t kTrailerSize = 8 + 3 * 8 + 4 + 8;
 
-enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2 };
+enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4 };
 inline constexpr unsigned kFlagContinues = 1u, kFlagOpen = 2u;
 
 /// Low 32 bits of XXH64(data, seed 0).
@@ -69,6 +69,10 @@ Result<void> read_chain_payload(std::string_view payload, Profile p, int axes, b
 /// One whole block record: header, zstd payload, checksum.
 std::string make_block_record(unsigned type, unsigned flags, std::string_view uncompressed,
                               int level);
+
+/// One whole block record whose payload is stored as is (modeled blocks:
+/// decoded size = compressed size).
+std::string make_stored_record(unsigned type, unsigned flags, std::string_view payload);
 
 /// Decompresses a zstd payload whose decoded size is declared as `dsize`
 /// (already checked against the limits). Errors: Errc::corrupt.

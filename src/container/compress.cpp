@@ -9,7 +9,9 @@
 #include <memory>
 #include <thread>
 
+#include "aligned_cut.hpp"
 #include "block_codec.hpp"
+#include "modeled_block.hpp"
 #include "bytes.hpp"
 #include "stepzip/container.hpp"
 
@@ -25,7 +27,7 @@ struct Job {
     std::string bytes;         // the block's input bytes (proved equal to the input)
     std::uint64_t first_chain = 0;  // index of the block's first chain in the input
     std::string record;        // the encoded block record
-    bool raw = false;
+    unsigned type = stz::kRaw;  // block type written
     Block decoded;             // the block as the decoder sees it (chain blocks)
     SegmentStats stats;
     BlockCounts counts;
@@ -59,6 +61,32 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind,
     return {};
 }
 
+// The smaller segment-model payload of two cuts: the segmenter's, and one
+// preferring default-phase segments (controller vectors, aligned_cut.hpp).
+std::string segment_model_payload(const Block& block, Profile p,
+                                  const std::vector<std::vector<Segment>>& segs, SegmenterKind kind) {
+    std::string best = write_segment_model(block, p, segs);
+    if (kind != SegmenterKind::greedy) {
+        // The fewest segments are not always the cheapest to code: try greedy too.
+        std::vector<std::vector<Segment>> greedy(block.chains.size());
+        bool ok = true;
+        for (std::size_t c = 0; ok && c < block.chains.size(); ++c)
+            ok = segment_steps(block.chains[c].steps, block.axes, p, SegmenterKind::greedy, greedy[c]).ok();
+        if (ok) {
+            std::string alt = write_segment_model(block, p, greedy);
+            if (alt.size() < best.size()) best = std::move(alt);
+        }
+    }
+    std::vector<std::vector<Segment>> aligned(block.chains.size());
+    for (std::size_t c = 0; c < block.chains.size(); ++c)
+        if (!cut_preferring_default(block.chains[c].steps, block.axes, p, aligned[c])) return best;
+    if (aligned != segs) {
+        std::string alt = write_segment_model(block, p, aligned);
+        if (alt.size() < best.size()) best = std::move(alt);
+    }
+    return best;
+}
+
 bool representable(const Block& block, Profile p, int axes) {
     if (block.axes != axes || block.axes > profile_max_axes(p)) return false;
     if (block.chains.size() > kMaxBlockChains) return false;
@@ -70,12 +98,23 @@ bool representable(const Block& block, Profile p, int axes) {
     return steps <= kMaxBlockSteps;
 }
 
-// Encodes, chooses chain or raw record, and proves the record decodes back.
+// Encodes every candidate (segment records + zstd, segment model, step
+// model, raw bytes + zstd), keeps the smallest, and proves that the record
+// decodes back to the block.
 void run_job(Job& job, const Settings& s) {
     std::string best;
     const unsigned flags = (job.block.continues ? kFlagContinues : 0u) |
                            (job.block.open ? kFlagOpen : 0u);
-    bool raw = true;
+    unsigned type = kRaw;
+    auto consider = [&](unsigned t, std::string rec) {
+        if (!rec.empty() && (best.empty() || rec.size() < best.size())) {
+            best = std::move(rec);
+            type = t;
+        }
+    };
+    const bool fits = job.block.axes == s.axes && job.block.chains.size() <= kMaxBlockChains;
+    std::uint64_t block_steps = 0;
+    for (const Chain& c : job.block.chains) block_steps += c.steps.size();
     if (representable(job.block, s.profile, s.axes)) {
         std::vector<std::vector<Segment>> segs;
         auto r = segment_block(job.block, s.profile, s.segmenter, segs, job.stats, job.first_chain,
@@ -85,10 +124,10 @@ void run_job(Job& job, const Settings& s) {
             return;
         }
         const std::string payload = write_chain_payload(job.block, s.profile, segs);
-        if (payload.size() <= kMaxBlockPayload) {
-            best = make_block_record(kChains, flags, payload, s.level);
-            raw = best.empty();
-        }
+        if (payload.size() <= kMaxBlockPayload)
+            consider(kChains, make_block_record(kChains, flags, payload, s.level));
+        const std::string model = segment_model_payload(job.block, s.profile, segs, s.segmenter);
+        if (model.size() <= kMaxBlockPayload) consider(kSegmentModel, make_stored_record(kSegmentModel, flags, model));
     } else if (s.profile_named && job.block.axes == s.axes) {
         for (std::size_t c = 0; c < job.block.chains.size(); ++c) {
             auto r = profile_accepts(s.profile, job.block.chains[c].steps, job.block.axes);
@@ -101,52 +140,59 @@ void run_job(Job& job, const Settings& s) {
             }
         }
     }
-    if (job.bytes.size() > kMaxBlockBytes && raw) {
+    if (fits && block_steps <= kMaxBlockSteps) {
+        const std::string model = write_step_model(job.block);
+        if (!model.empty() && model.size() <= kMaxBlockPayload)
+            consider(kStepModel, make_stored_record(kStepModel, flags, model));
+    }
+    const bool chain_kind = !best.empty();
+    if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {
         job.error = make_error(Errc::limit, s.source + ": a block of " + std::to_string(job.bytes.size()) +
                                                 " bytes exceeds the raw block limit");
         return;
     }
     std::string raw_payload;
-    std::uint64_t block_steps = 0;
-    for (const Chain& c : job.block.chains) block_steps += c.steps.size();
     put_varint(raw_payload, job.block.chains.size());
     put_varint(raw_payload, block_steps);
-    if (job.bytes.size() <= kMaxBlockBytes && (raw || s.allow_raw)) {
+    if (job.bytes.size() <= kMaxBlockBytes && (!chain_kind || s.allow_raw)) {
         raw_payload += job.bytes;
-        std::string alt = make_block_record(kRaw, flags, raw_payload, s.level);
-        if (!alt.empty() && (raw || alt.size() < best.size())) {
-            best = std::move(alt);
-            raw = true;
-        }
+        consider(kRaw, make_block_record(kRaw, flags, raw_payload, s.level));
     }
     if (best.empty()) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");
         return;
     }
-    job.raw = raw;
-    if (raw) job.stats = {};
+    job.type = type;
+    if (type == kRaw) job.stats = {};
     job.record = std::move(best);
 
     // Round-trip proof, part 1: decode the record exactly as the decoder does.
     const std::string where = s.source + ": round-trip proof";
     const std::uint64_t csize = get_le(job.record.data() + 2, 4);
     const std::uint64_t dsize = get_le(job.record.data() + 6, 4);
-    auto dec = unzstd(std::string_view(job.record).substr(kBlockHeaderSize, csize),
-                      static_cast<std::uint32_t>(dsize), where);
-    if (!dec) {
-        job.error = make_error(Errc::mismatch, dec.error().message);
-        return;
+    const std::string_view body = std::string_view(job.record).substr(kBlockHeaderSize, csize);
+    std::string dec;
+    if (type == kRaw || type == kChains) {
+        auto z = unzstd(body, static_cast<std::uint32_t>(dsize), where);
+        if (!z) {
+            job.error = make_error(Errc::mismatch, z.error().message);
+            return;
+        }
+        dec = std::move(*z);
     }
-    if (raw) {
-        if (std::string_view(*dec) != raw_payload)
-            job.error = make_error(Errc::mismatch, where + ": raw block differs");
+    if (type == kRaw) {
+        if (dec != raw_payload) job.error = make_error(Errc::mismatch, where + ": raw block differs");
         job.counts.chains = job.block.chains.size();
         job.counts.steps = block_steps;
         return;
     }
     job.decoded.continues = job.block.continues;
     job.decoded.open = job.block.open;
-    auto r = read_chain_payload(*dec, s.profile, s.axes, true, job.decoded, job.counts, where);
+    Result<void> r = type == kChains
+                         ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
+                     : type == kSegmentModel
+                         ? read_segment_model(body, s.profile, s.axes, true, job.decoded, job.counts, where)
+                         : read_step_model(body, s.axes, true, job.decoded, job.counts, where);
     if (!r) {
         job.error = make_error(Errc::mismatch, r.error().message);
         return;
@@ -169,7 +215,8 @@ std::size_t trial_size(const Block& block, Profile p, const Settings& base) {
     if (!segment_block(block, p, base.segmenter, segs, stats, 0, base.source)) return SIZE_MAX;
     const std::string payload = write_chain_payload(block, p, segs);
     const std::string rec = make_block_record(kChains, 0, payload, base.level);
-    return rec.empty() ? SIZE_MAX : rec.size();
+    const std::size_t model = segment_model_payload(block, p, segs, base.segmenter).size();
+    return rec.empty() ? model : std::min(rec.size(), model);
 }
 
 }  // namespace
@@ -261,7 +308,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             if (j.error.code != Errc::ok) return std::move(j.error);
             // Round-trip proof, part 2: render the decoded block with a writer
             // that sees exactly what the decoder's writer sees.
-            if (!j.raw) {
+            if (j.type != kRaw) {
                 std::string again;
                 auto r = proof->write(j.decoded, again);
                 if (!r || again != j.bytes)
@@ -273,6 +320,8 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             } else {
                 ++info.raw_blocks;
             }
+            if (j.type == kSegmentModel) ++info.segment_model_blocks;
+            if (j.type == kStepModel) ++info.step_model_blocks;
             info.chains += j.counts.chains;
             if (j.block.continues && chain_open && j.counts.chains > 0) --info.chains;
             chain_open = j.block.open;

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "block_codec.hpp"
+#include "modeled_block.hpp"
 #include "bytes.hpp"
 #include "stepzip/container.hpp"
 
@@ -104,7 +105,7 @@ Result<FrameInfo> decode_frame(const ReadFn& in, const WriteFn* out, std::string
         const unsigned type = static_cast<unsigned char>(rec[0]);
         const std::string at = src.name() + ": byte " + std::to_string(block_at);
         if (type == kEnd) break;
-        if (type != kChains && type != kRaw)
+        if (type != kChains && type != kRaw && type != kSegmentModel && type != kStepModel)
             return make_error(Errc::corrupt, at + ": unknown block type " + std::to_string(type));
         if (auto r = src.read(kBlockHeaderSize - 1, rec, got); !r) return std::move(r).error();
         if (got < kBlockHeaderSize - 1) return truncated(src, "block header");
@@ -119,6 +120,10 @@ Result<FrameInfo> decode_frame(const ReadFn& in, const WriteFn* out, std::string
         if (csize > kMaxBlockPayload || dsize > dlimit)
             return make_error(Errc::limit, src.name() + ": byte " + std::to_string(block_at + 2) +
                                                ": block sizes exceed the decoder limits");
+        const bool stored = type == kSegmentModel || type == kStepModel;
+        if (stored && dsize != csize)
+            return make_error(Errc::corrupt, src.name() + ": byte " + std::to_string(block_at + 6) +
+                                                 ": decoded size of a modeled block differs from its size");
         if (auto r = src.read(static_cast<std::size_t>(csize) + kBlockChecksumSize, rec, got); !r)
             return std::move(r).error();
         if (got < csize + kBlockChecksumSize) return truncated(src, "block");
@@ -128,7 +133,8 @@ Result<FrameInfo> decode_frame(const ReadFn& in, const WriteFn* out, std::string
                                                   std::to_string(block_at + body.size()) +
                                                   ": block checksum mismatch");
         const std::string where = at + " (block " + std::to_string(info.blocks) + ")";
-        auto raw = unzstd(body.substr(kBlockHeaderSize), static_cast<std::uint32_t>(dsize), where);
+        Result<std::string> raw = std::string();
+        if (!stored) raw = unzstd(body.substr(kBlockHeaderSize), static_cast<std::uint32_t>(dsize), where);
         if (!raw) return std::move(raw).error();
         ++info.blocks;
         rendered.clear();
@@ -149,10 +155,17 @@ Result<FrameInfo> decode_frame(const ReadFn& in, const WriteFn* out, std::string
             block.continues = flags & kFlagContinues;
             block.open = flags & kFlagOpen;
             BlockCounts counts;
-            if (auto r = read_chain_payload(*raw, hdr->profile, hdr->axes, render, block, counts,
-                                            where + " payload");
-                !r)
-                return std::move(r).error();
+            const std::string_view payload = body.substr(kBlockHeaderSize);
+            Result<void> r =
+                type == kChains ? read_chain_payload(*raw, hdr->profile, hdr->axes, render, block,
+                                                     counts, where + " payload")
+                : type == kSegmentModel
+                    ? read_segment_model(payload, hdr->profile, hdr->axes, render, block, counts,
+                                         where + " payload")
+                    : read_step_model(payload, hdr->axes, render, block, counts, where + " payload");
+            if (!r) return std::move(r).error();
+            if (type == kSegmentModel) ++info.segment_model_blocks;
+            if (type == kStepModel) ++info.step_model_blocks;
             info.segments += counts.segments;
             info.steps += counts.steps;
             info.chains += counts.chains;

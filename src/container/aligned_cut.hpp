@@ -1,0 +1,22 @@
+// A cut of a chain that prefers default-phase segments (aligned_cut.cpp).
+// Internal to src/container.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "stepzip/profile.hpp"
+#include "stepzip/segment.hpp"
+#include "stepzip/step.hpp"
+
+namespace stepzip::stz {
+
+/// Appends to `out` exact segments of `steps` under `p`: at each point the
+/// longest segment drawn at the profile's default phase that is at least half
+/// as long as the longest exact segment there, else the longest exact one.
+/// Returns false (and leaves `out` partial) for the patent profile or when a
+/// run cannot be fitted. Thread-safe.
+bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
+                            std::vector<Segment>& out);
+
+}  // namespace stepzip::stz

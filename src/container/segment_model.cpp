@@ -1,0 +1,602 @@
+// Segment-model blocks (docs/FORMAT.md "Segment model"): each chain as a
+// start delta and its segments, coded by the adaptive binary range coder
+// with contexts taken from the previous segment, plus a match model over
+// whole items (chain starts, segments, chain ends) that finds repeated
+// strokes anywhere earlier in the block.
+// One template (SegmentCoder<Io>) runs both directions, so the encoder and
+// the decoder cannot disagree on a context.
+// Complexity: O(axes) range-coder bits per segment (a few tens), O(1) table
+// work per item; memory O(items) plus fixed context tables (~300 KiB).
+#include <zstd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <unordered_map>
+
+#include "modeled_block.hpp"
+#include "range_coder.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+// 2D octants as in the record layout (docs/FORMAT.md): indexed by
+// lead * 4 + negmask, and back.
+constexpr int kOctantOf[8] = {0, 3, 7, 4, 1, 2, 6, 5};
+constexpr int kCodeOfOctant[8] = {0, 4, 5, 1, 3, 7, 6, 2};
+
+enum Kind : std::uint8_t { kStart = 0, kSeg = 1, kEnd = 2 };
+
+// One coded item. For a segment, `phase` holds the phases of its
+// non-degenerate functions and 0 elsewhere (a canonical form for equality).
+struct Item {
+    Kind kind = kEnd;
+    Point delta{};
+    std::array<std::int64_t, kMaxAxes - 1> phase{};
+    std::uint64_t hash = 0;
+    bool operator==(const Item& o) const {
+        return kind == o.kind && delta == o.delta && phase == o.phase;
+    }
+};
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+    h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    return h * 0xBF58476D1CE4E5B9ull;
+}
+
+// The match context hashes a chain start by its kind only, so a repeated
+// chain is found after its first segment wherever it starts.
+void seal(Item& it) {
+    std::uint64_t h = it.kind;
+    if (it.kind == kStart) {
+        it.hash = mix(h, 0);
+        return;
+    }
+    for (int i = 0; i < kMaxAxes; ++i) h = mix(h, static_cast<std::uint64_t>(it.delta[i]));
+    for (auto ph : it.phase) h = mix(h, static_cast<std::uint64_t>(ph));
+    it.hash = h;
+}
+
+int cap(int v, int hi) { return v < hi ? v : hi; }
+
+// Equal as match contexts: chain starts by kind only.
+bool alike(const Item& a, const Item& b) { return a.kind == kStart ? b.kind == kStart : a == b; }
+
+// Match-length bucket: 0..15 as is, then one bucket per power of two, up to 23.
+int len_bucket(std::uint64_t len) {
+    if (len < 16) return static_cast<int>(len);
+    return cap(16 + bit_length(len) - 5, 23);
+}
+
+constexpr int kMatchBits = 18;
+
+struct Contexts {
+    Prob turn[32][8];        // 2D: octant turn, ctx prev turn x prev-L class
+    Prob dir_same[2];        // N-D: same direction as the previous segment
+    Prob dir_tree[512];      // N-D: (lead << 6 | negmask), 9-bit tree
+    UIntModel lead[24];      // L - 1, ctx bit_length(prev L) (cap 11) x (turn != 0)
+    UIntModel minor[12];     // S - prediction, ctx bit_length(L) (cap 11)
+    UIntModel phase[12];     // phase - default, ctx bit_length(L) (cap 11)
+    UIntModel start[kMaxAxes];  // chain start - previous end, per axis
+    Prob end[8];             // end of chain, ctx (at start point) x segments so far
+    Prob hit[24][3];         // match hit, ctx length bucket x predicted kind
+    Prob succ_in[4][2];      // segment followed the previous one before, ctx list size x previous was
+    UIntModel succ_rank[4];  // which one, ctx list size
+    Prob known[2];           // segment is in the recent-shapes list, ctx previous one was
+    UIntModel rank[8];       // its rank, ctx bit_length(previous rank) (cap 7)
+};
+
+constexpr std::size_t kShapes = 1024;    // recent distinct segments, most recent first
+constexpr std::size_t kSuccessors = 8;  // segments seen after a given segment
+
+struct Counts {
+    std::uint64_t nchains = 0, nsegments = 0, nsteps = 0;
+    std::uint64_t seen_segments = 0, seen_steps = 0;
+};
+
+template <class Io>
+class SegmentCoder {
+public:
+    // `items` bounds the number of items the block holds (sizes the match table).
+    SegmentCoder(Io& io, Profile p, int axes, std::uint64_t items)
+        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()),
+          bits_(std::clamp(bit_length(items) + 1, 8, kMatchBits)),
+          table_(std::size_t{1} << bits_, -1) {}
+
+    void set_grid(std::int64_t g) { grid_ = g; }
+
+    // Codes a chain start delta (encoder: `want`); returns it.
+    Point start(const Point& want) {
+        Item it;
+        it.kind = kStart;
+        const Item* pred = predicted(kStart);
+        bool hit = false;
+        if constexpr (!Io::kDecode) io_.field = 0;
+        if (pred) hit = code_hit(*pred, want == pred->delta);
+        if constexpr (!Io::kDecode) io_.field = 1;
+        if (hit) {
+            it = *pred;
+        } else {
+            for (int i = 0; i < axes_; ++i) {
+                const std::int64_t v = code_sint(io_, ctx_->start[i], want[i] / grid_);
+                if (v > (std::int64_t{1} << 62) / grid_ || v < -(std::int64_t{1} << 62) / grid_)
+                    io_.failed = true;
+                else
+                    it.delta[i] = v * grid_;
+            }
+            seal(it);
+        }
+        prev_shape_ = kNone;
+        push(it);
+        return it.delta;
+    }
+
+    // Codes what follows in a chain: a segment (returns true, `seg` set) or
+    // the chain's end (false). `want` is the encoder's segment or nullptr at
+    // the end. Decoder errors set io.failed or `error_`.
+    bool next(const Segment* want, bool at_start_point, std::uint64_t in_chain, const Counts& c,
+              Segment& seg) {
+        Item it;
+        if (c.seen_steps == c.nsteps || c.seen_segments == c.nsegments) {
+            push(it);  // forced end: no bits
+            return false;
+        }
+        Item w;
+        if (!Io::kDecode) w = item_of(want);
+        const Item* pred = predicted(kSeg);
+        bool hit = false;
+        if constexpr (!Io::kDecode) io_.field = 2;
+        if (pred) hit = code_hit(*pred, w == *pred);
+        if (hit) {
+            it = *pred;
+        } else {
+            bool end = false;
+            if constexpr (!Io::kDecode) io_.field = 3;
+            if (!(pred && pred->kind == kEnd))
+                end = io_.bit(ctx_->end[(at_start_point ? 4 : 0) + cap(static_cast<int>(in_chain), 3)],
+                              w.kind == kEnd);
+            if (!end) {
+                if constexpr (!Io::kDecode) io_.field = 8;
+                const std::uint32_t id = code_shape(w);
+                if (io_.failed) return fail("bad shape rank");
+                if (id != kNone) {
+                    it = uniq_[id];
+                } else {
+                    if (!code_segment(want, seg)) return false;
+                    it = item_of(&seg);
+                }
+            }
+        }
+        if (it.kind == kSeg) {
+            segment_of(it, seg);
+            note_segment(seg);
+            note_shape(it);
+        }
+        push(it);
+        return it.kind == kSeg;
+    }
+
+    const std::string& error() const { return error_; }
+
+private:
+    static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+    // Index of a known segment (kNone if new).
+    std::uint32_t find_shape(const Item& it) const {
+        auto range = by_hash_.equal_range(it.hash);
+        for (auto k = range.first; k != range.second; ++k)
+            if (uniq_[k->second] == it) return k->second;
+        return kNone;
+    }
+
+    static void move_to_front(std::vector<std::uint32_t>& list, std::uint32_t id, std::size_t limit) {
+        std::size_t k = 0;
+        while (k < list.size() && list[k] != id) ++k;
+        if (k == list.size()) {
+            if (list.size() < limit) list.push_back(id);
+            k = list.size() - 1;
+        }
+        for (; k > 0; --k) list[k] = list[k - 1];
+        list[0] = id;
+    }
+
+    // Codes whether the segment is one that followed the previous segment
+    // before (and which), else one of the recent segments (and which);
+    // returns its index, or kNone for a new segment.
+    std::uint32_t code_shape(const Item& w) {
+        const std::uint32_t want = Io::kDecode ? kNone : find_shape(w);
+        auto found = succ_.find(prev_shape_);
+        if (found != succ_.end()) {
+            const std::vector<std::uint32_t>& list = found->second;
+            std::size_t r = 0;
+            while (r < list.size() && list[r] != want) ++r;
+            const int size_class = cap(static_cast<int>(list.size()) - 1, 3);
+            if (io_.bit(ctx_->succ_in[size_class][prev_succ_], r < list.size())) {
+                prev_succ_ = 1;
+                r = code_uint(io_, ctx_->succ_rank[size_class], r);
+                if (r >= list.size()) {
+                    io_.failed = true;
+                    return kNone;
+                }
+                return list[r];
+            }
+        }
+        prev_succ_ = 0;
+        std::size_t r = 0;
+        while (r < recent_.size() && recent_[r] != want) ++r;
+        const bool known = io_.bit(ctx_->known[prev_known_], r < recent_.size());
+        prev_known_ = known;
+        if (!known) return kNone;
+        r = code_uint(io_, ctx_->rank[cap(bit_length(prev_rank_), 7)], r);
+        if (r >= recent_.size()) {
+            io_.failed = true;
+            return kNone;
+        }
+        prev_rank_ = r;
+        return recent_[r];
+    }
+
+    void note_shape(const Item& it) {
+        std::uint32_t id = find_shape(it);
+        if (id == kNone) {
+            id = static_cast<std::uint32_t>(uniq_.size());
+            uniq_.push_back(it);
+            by_hash_.emplace(it.hash, id);
+        }
+        move_to_front(recent_, id, kShapes);
+        move_to_front(succ_[prev_shape_], id, kSuccessors);
+        prev_shape_ = id;
+    }
+
+    Item item_of(const Segment* s) const {
+        Item it;
+        if (!s) {
+            seal(it);
+            return it;
+        }
+        it.kind = kSeg;
+        it.delta = s->delta;
+        for (int j = 0; j < phase_count(p_, axes_); ++j) {
+            const auto ab = *phase_arguments(p_, *s, axes_, j);
+            const PhaseRange r = phase_range(p_, ab.first, ab.second);
+            if (r.hi - r.lo != 1) it.phase[j] = s->phase[j];
+        }
+        seal(it);
+        return it;
+    }
+
+    // Segment of an item from the history (valid: it was checked when coded).
+    bool segment_of(const Item& it, Segment& seg) const {
+        seg.delta = it.delta;
+        for (int j = 0; j < phase_count(p_, axes_); ++j) {
+            const auto ab = *phase_arguments(p_, seg, axes_, j);
+            const PhaseRange r = phase_range(p_, ab.first, ab.second);
+            seg.phase[j] = r.hi - r.lo == 1 ? r.lo : it.phase[j];
+        }
+        return true;
+    }
+
+    bool code_hit(const Item& pred, bool is_hit) {
+        return io_.bit(ctx_->hit[len_bucket(len_)][pred.kind], is_hit);
+    }
+
+    const Item* predicted(Kind at) const {
+        if (ptr_ < 0 || static_cast<std::size_t>(ptr_) >= hist_.size()) return nullptr;
+        const Item& it = hist_[static_cast<std::size_t>(ptr_)];
+        if ((at == kStart) != (it.kind == kStart)) return nullptr;
+        return &it;
+    }
+
+    void push(const Item& it) {
+        if (ptr_ >= 0 && static_cast<std::size_t>(ptr_) < hist_.size() &&
+            hist_[static_cast<std::size_t>(ptr_)] == it) {
+            ++len_;
+            ++ptr_;
+        } else {
+            len_ = 0;
+            ptr_ = -1;
+        }
+        hist_.push_back(it);
+        const std::size_t n = hist_.size();
+        if (n >= 2) {
+            const std::uint64_t h = mix(hist_[n - 2].hash, hist_[n - 1].hash) >> (64 - bits_);
+            if (ptr_ < 0 && table_[h] >= 0) {
+                // Verified: the two items before the candidate equal the last two
+                // (chain starts compare by kind only, as they are hashed).
+                const std::size_t cand = static_cast<std::size_t>(table_[h]);
+                if (cand >= 2 && alike(hist_[cand - 1], hist_[n - 1]) && alike(hist_[cand - 2], hist_[n - 2]))
+                    ptr_ = table_[h];
+            }
+            table_[h] = static_cast<std::int32_t>(n);
+        }
+    }
+
+    void note_segment(const Segment& seg) {
+        const int lead = leading_axis(seg.delta, axes_);
+        if (axes_ == 2) {
+            unsigned neg = 0;
+            for (int i = 0; i < 2; ++i)
+                if (seg.delta[i] < 0) neg |= 1u << i;
+            const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
+            prev_turn_ = (oct - prev_oct_) & 7;
+            prev_oct_ = oct;
+        } else {
+            unsigned neg = 0;
+            for (int i = 0; i < axes_; ++i)
+                if (seg.delta[i] < 0) neg |= 1u << i;
+            prev_dir_ = (static_cast<unsigned>(lead) << 6) | neg;
+            prev_turn_ = 0;
+        }
+        prev_l_ = std::llabs(seg.delta[lead]);
+        int j = 0;
+        for (int i = 0; i < axes_; ++i)
+            if (i != lead) prev_s_[j++] = std::llabs(seg.delta[i]);
+    }
+
+    bool fail(const char* what) {
+        if (error_.empty()) error_ = what;
+        io_.failed = true;
+        return false;
+    }
+
+    // Codes the fields of a segment (encoder: *want).
+    bool code_segment(const Segment* want, Segment& seg) {
+        int lead = 0;
+        unsigned neg = 0;
+        std::int64_t l = 1;
+        if (!Io::kDecode) {
+            lead = leading_axis(want->delta, axes_);
+            for (int i = 0; i < axes_; ++i)
+                if (want->delta[i] < 0) neg |= 1u << i;
+            l = std::llabs(want->delta[lead]);
+        }
+        int turn = 0;
+        const int lclass = cap(bit_length(static_cast<std::uint64_t>(prev_l_)) - 1, 3);
+        if (axes_ == 2) {
+            const int oct = Io::kDecode ? 0 : kOctantOf[lead * 4 + static_cast<int>(neg)];
+            if constexpr (!Io::kDecode) io_.field = 4;
+        turn = static_cast<int>(code_tree(io_, ctx_->turn[prev_turn_ + 8 * lclass], 3,
+                                              static_cast<unsigned>((oct - prev_oct_) & 7)));
+            const int code = kCodeOfOctant[(prev_oct_ + turn) & 7];
+            lead = code >> 2;
+            neg = static_cast<unsigned>(code & 3);
+        } else {
+            const unsigned dir = (static_cast<unsigned>(lead) << 6) | neg;
+            unsigned got = prev_dir_;
+            if (!io_.bit(ctx_->dir_same[0], dir == prev_dir_)) got = code_tree(io_, ctx_->dir_tree, 9, dir);
+            lead = static_cast<int>(got >> 6);
+            neg = got & 63u;
+            turn = got == prev_dir_ ? 0 : 1;
+            if (lead >= axes_ || (neg >> axes_) != 0) return fail("bad direction");
+        }
+        const int lctx = cap(bit_length(static_cast<std::uint64_t>(prev_l_)), 11) * 2 + (turn != 0);
+        if constexpr (!Io::kDecode) io_.field = 5;
+        const std::uint64_t l1 = code_uint(io_, ctx_->lead[lctx], static_cast<std::uint64_t>(l - 1));
+        if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
+        l = static_cast<std::int64_t>(l1) + 1;
+        const int bl = cap(bit_length(static_cast<std::uint64_t>(l)), 11);
+        seg = Segment{};
+        int j = 0;
+        for (int i = 0; i < axes_; ++i) {
+            std::int64_t v = l;
+            if (i != lead) {
+                const std::int64_t pred = std::min(l, (l * prev_s_[j] + prev_l_ / 2) / prev_l_);
+                if constexpr (!Io::kDecode) io_.field = 6;
+        const std::int64_t d = code_sint(io_, ctx_->minor[bl], Io::kDecode ? 0 : std::llabs(want->delta[i]) - pred);
+                if (io_.failed) return fail("bad minor total");
+                v = pred + d;
+                if (v < 0 || v > l || (i < lead && v == l)) return fail("minor total out of range");
+                ++j;
+            }
+            if ((neg >> i) & 1u) {
+                if (v == 0) return fail("sign on a resting axis");
+                v = -v;
+            }
+            seg.delta[i] = v;
+        }
+        for (int k = 0; k < phase_count(p_, axes_); ++k) {
+            const auto ab = *phase_arguments(p_, seg, axes_, k);
+            const PhaseRange r = phase_range(p_, ab.first, ab.second);
+            const std::int64_t def = default_phase(p_, ab.first, ab.second);
+            if (r.hi - r.lo == 1) {
+                seg.phase[k] = r.lo;
+                continue;
+            }
+            if constexpr (!Io::kDecode) io_.field = 7;
+        const std::int64_t d = code_sint(io_, ctx_->phase[bl], Io::kDecode ? 0 : want->phase[k] - def);
+            if (io_.failed || !r.contains(def + d)) return fail("phase out of range");
+            seg.phase[k] = def + d;
+        }
+        note_segment(seg);
+        return true;
+    }
+
+    Io& io_;
+    Profile p_;
+    int axes_;
+    std::unique_ptr<Contexts> ctx_;
+    int bits_;
+    std::vector<std::int32_t> table_;
+    std::vector<Item> hist_;
+    std::int64_t ptr_ = -1;
+    std::uint64_t len_ = 0;
+    int prev_oct_ = 0, prev_turn_ = 0;
+    unsigned prev_dir_ = 0;
+    std::int64_t prev_l_ = 1;
+    std::array<std::int64_t, kMaxAxes> prev_s_{};
+    std::string error_;
+    std::vector<Item> uniq_;                                  // distinct segments seen
+    std::unordered_multimap<std::uint64_t, std::uint32_t> by_hash_;
+    std::vector<std::uint32_t> recent_;                       // most recent first
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> succ_;  // by previous segment
+    std::uint32_t prev_shape_ = kNone;
+    int prev_succ_ = 0;
+    int prev_known_ = 0;
+    std::uint64_t prev_rank_ = 0;
+    std::int64_t grid_ = 1;
+};
+
+std::int64_t steps_of(Profile p, const Segment& s, int axes) {
+    return segment_length(s.delta, axes, profile_eight_connected(p));
+}
+
+}  // namespace
+
+void put_layout(std::string& out, std::string_view layout) {
+    put_varint(out, layout.size());
+    std::string z;
+    if (!layout.empty()) {
+        z.resize(ZSTD_compressBound(layout.size()));
+        const std::size_t n = ZSTD_compress(z.data(), z.size(), layout.data(), layout.size(), 19);
+        if (ZSTD_isError(n) || n >= layout.size()) z.clear();
+        else z.resize(n);
+    }
+    if (z.empty()) {
+        put_varint(out, layout.size());
+        out += layout;
+    } else {
+        put_varint(out, z.size());
+        out += z;
+    }
+}
+
+Result<std::string> get_layout(Cursor& cur, const std::string& where) {
+    std::uint64_t size, stored;
+    if (!cur.varint(size) || !cur.varint(stored))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad layout sizes");
+    if (size > kMaxBlockPayload)
+        return make_error(Errc::limit, where + " byte " + std::to_string(cur.pos()) + ": layout over the limit");
+    std::string_view bytes;
+    if (stored > size || !cur.bytes(static_cast<std::size_t>(stored), bytes))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad layout");
+    if (stored == size) return std::string(bytes);
+    return unzstd(bytes, static_cast<std::uint32_t>(size), where + " layout");
+}
+
+std::string write_segment_model(const Block& block, Profile p,
+                                const std::vector<std::vector<Segment>>& segs) {
+    Counts c;
+    c.nchains = block.chains.size();
+    for (std::size_t i = 0; i < segs.size(); ++i)
+        for (const Segment& s : segs[i]) {
+            ++c.nsegments;
+            c.nsteps += static_cast<std::uint64_t>(steps_of(p, s, block.axes));
+        }
+    std::string out;
+    put_varint(out, c.nchains);
+    put_varint(out, c.nsegments);
+    put_varint(out, c.nsteps);
+    // Grid of the chain starts: the gcd of every start delta.
+    std::uint64_t grid = 0;
+    {
+        Point ref{};
+        for (const Chain& chain : block.chains) {
+            for (int a = 0; a < block.axes; ++a)
+                grid = std::gcd(grid, static_cast<std::uint64_t>(std::llabs(chain.start[a] - ref[a])));
+            ref = chain.end();
+        }
+        if (grid == 0 || grid > (std::uint64_t{1} << 62)) grid = 1;
+    }
+    put_varint(out, grid);
+    put_layout(out, block.layout);
+    EncIo io;
+    SegmentCoder<EncIo> coder(io, p, block.axes, 2 * c.nchains + c.nsegments);
+    coder.set_grid(static_cast<std::int64_t>(grid));
+    Point ref{};
+    for (std::size_t i = 0; i < block.chains.size(); ++i) {
+        const Chain& chain = block.chains[i];
+        Point d{};
+        for (int a = 0; a < block.axes; ++a) d[a] = chain.start[a] - ref[a];
+        coder.start(d);
+        Point pos = chain.start;
+        Segment got;
+        for (std::size_t k = 0;; ++k) {
+            const Segment* want = k < segs[i].size() ? &segs[i][k] : nullptr;
+            if (!coder.next(want, pos == chain.start, k, c, got)) break;
+            for (int a = 0; a < block.axes; ++a) pos[a] += want->delta[a];
+            ++c.seen_segments;
+            c.seen_steps += static_cast<std::uint64_t>(steps_of(p, *want, block.axes));
+        }
+        ref = pos;
+    }
+    out += io.rc.finish();
+#ifdef STEPZIP_MODEL_STATS
+    {
+        static const char* names[] = {"start-hit", "start", "seg-hit", "end", "dir", "lead", "minor", "phase", "shape"};
+        for (int f = 0; f < 9; ++f) std::fprintf(stderr, "%-10s %10.0f bytes\n", names[f], io.cost[f] / 8);
+        std::fprintf(stderr, "segments %llu steps %llu chains %llu\n", (unsigned long long)c.nsegments, (unsigned long long)c.nsteps, (unsigned long long)c.nchains);
+    }
+#endif
+    return out;
+}
+
+Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
+                                Block& out, BlockCounts& counts, const std::string& where) {
+    Cursor cur(payload);
+    Counts c;
+    if (!cur.varint(c.nchains) || !cur.varint(c.nsegments) || !cur.varint(c.nsteps))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
+    if (c.nchains > kMaxBlockChains || c.nsegments > kMaxBlockSteps || c.nsteps > kMaxBlockSteps)
+        return make_error(Errc::limit, where + " byte 0: payload declares more chains, segments or "
+                                               "steps than the limits");
+    std::uint64_t grid;
+    if (!cur.varint(grid) || grid == 0 || grid > (std::uint64_t{1} << 62))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad start grid");
+    auto layout = get_layout(cur, where);
+    if (!layout) return std::move(layout).error();
+    const std::size_t base = cur.pos();
+    DecIo io(payload.substr(base));
+    SegmentCoder<DecIo> coder(io, p, axes, 2 * c.nchains + c.nsegments);
+    coder.set_grid(static_cast<std::int64_t>(grid));
+    if (expand) {
+        out.axes = axes;
+        out.chains.clear();
+        out.layout = std::move(*layout);
+    }
+    auto fail = [&](const std::string& what) {
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " +
+                                             (coder.error().empty() ? what : coder.error()));
+    };
+    Point ref{};
+    for (std::uint64_t i = 0; i < c.nchains; ++i) {
+        Chain chain;
+        chain.axes = axes;
+        const Point d = coder.start(Point{});
+        if (io.failed || io.rc.overrun()) return fail("bad chain start");
+        for (int a = 0; a < axes; ++a) {
+            if ((ref[a] > 0 && d[a] > std::numeric_limits<std::int64_t>::max() - ref[a]) ||
+                (ref[a] < 0 && d[a] < std::numeric_limits<std::int64_t>::min() - ref[a]))
+                return fail("chain start out of range");
+            chain.start[a] = ref[a] + d[a];
+        }
+        Point pos = chain.start;
+        Segment seg;
+        for (std::uint64_t k = 0;; ++k) {
+            const bool more = coder.next(nullptr, pos == chain.start, k, c, seg);
+            if (io.failed || io.rc.overrun()) return fail("bad segment");
+            if (!more) break;
+            const std::int64_t n = steps_of(p, seg, axes);
+            if (c.seen_steps + static_cast<std::uint64_t>(n) > c.nsteps) return fail("more steps than declared");
+            c.seen_steps += static_cast<std::uint64_t>(n);
+            ++c.seen_segments;
+            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+            if (expand) expand_segment(p, seg, axes, chain.steps);
+        }
+        ref = pos;
+        if (expand) out.chains.push_back(std::move(chain));
+    }
+    if (c.seen_segments != c.nsegments || c.seen_steps != c.nsteps)
+        return fail("declared segment or step count does not match");
+    if (!io.rc.finished()) return fail("range-coded stream does not end at the payload's end");
+    counts.chains += c.nchains;
+    counts.segments += c.nsegments;
+    counts.steps += c.nsteps;
+    return {};
+}
+
+}  // namespace stepzip::stz

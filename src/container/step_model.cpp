@@ -1,0 +1,244 @@
+// Step-model blocks (docs/FORMAT.md "Step model"): two-axis chains coded
+// step by step, each Freeman direction as the turn from the previous one in
+// the context of the three previous turns, with a match model over the
+// block's earlier steps (repeated contours anywhere before). Wins over
+// segments where segments are short (noisy contours, random walks).
+// One template (StepCoder<Io>) runs both directions.
+// Complexity: 4-5 range-coder bits per step; memory O(steps) plus ~1 MiB of
+// fixed tables.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+
+#include "modeled_block.hpp"
+#include "range_coder.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+constexpr int kEndSymbol = 8;
+constexpr std::size_t kMinMatch = 12;    // steps hashed to find a match
+constexpr int kStepMatchBits = 20;
+constexpr int kMaxStepOrder = 4;  // previous turns in the direction context
+
+int cap(int v, int hi) { return v < hi ? v : hi; }
+int len_bucket(std::uint64_t len) {
+    if (len < 16) return static_cast<int>(len);
+    return cap(16 + bit_length(len) - 5, 23);
+}
+
+struct StepContexts {
+    Prob turn[4096][8];  // ctx: previous `order` turns (order 0..4)
+    Prob end[4];         // ctx: (at start point) + 2 * (no step yet)
+    Prob hit[24][2];     // ctx: length bucket x (predicted end)
+    UIntModel start[2];
+};
+
+struct Counts {
+    std::uint64_t nchains = 0, nsteps = 0, seen_steps = 0;
+};
+
+template <class Io>
+class StepCoder {
+public:
+    // `symbols` bounds the number of symbols the block holds (sizes the match table).
+    StepCoder(Io& io, std::uint64_t symbols, int order)
+        : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1),
+          bits_(std::clamp(bit_length(symbols) + 1, 8, kStepMatchBits)),
+          table_(std::size_t{1} << bits_, -1) {}
+
+    Point start(const Point& want) {
+        Point d{};
+        for (int i = 0; i < 2; ++i) {
+            d[i] = code_sint(io_, ctx_->start[i], want[i]);
+            if (d[i] > (std::int64_t{1} << 62) || d[i] < -(std::int64_t{1} << 62)) io_.failed = true;
+        }
+        return d;
+    }
+
+    // Codes the next symbol of a chain: a Freeman code 0..7, or kEndSymbol.
+    int next(int want, bool at_start_point, bool first, const Counts& c) {
+        int sym;
+        if (c.seen_steps == c.nsteps) {
+            sym = kEndSymbol;  // forced: no bits
+        } else {
+            const int pred = ptr_ >= 0 ? hist_[static_cast<std::size_t>(ptr_)] : -1;
+            bool hit = false;
+            if (pred >= 0) hit = io_.bit(ctx_->hit[len_bucket(len_)][pred == kEndSymbol], want == pred);
+            if (hit) {
+                sym = pred;
+            } else {
+                bool end = false;
+                if (pred != kEndSymbol)
+                    end = io_.bit(ctx_->end[(at_start_point ? 1 : 0) + (first ? 2 : 0)], want == kEndSymbol);
+                if (end) {
+                    sym = kEndSymbol;
+                } else {
+                    const int t = static_cast<int>(code_tree(
+                        io_, ctx_->turn[turns_ & mask_], 3, static_cast<unsigned>((want - prev_) & 7)));
+                    sym = (prev_ + t) & 7;
+                }
+            }
+        }
+        push(sym);
+        if (sym != kEndSymbol) {
+            turns_ = ((turns_ << 3) | static_cast<unsigned>((sym - prev_) & 7)) & 4095u;
+            prev_ = sym;
+        }
+        return sym;
+    }
+
+private:
+    void push(int sym) {
+        if (ptr_ >= 0 && hist_[static_cast<std::size_t>(ptr_)] == sym) {
+            ++len_;
+            ++ptr_;
+        } else {
+            len_ = 0;
+            ptr_ = -1;
+        }
+        hist_.push_back(static_cast<std::uint8_t>(sym));
+        const std::size_t n = hist_.size();
+        if (n >= kMinMatch) {
+            std::uint64_t h = 0;
+            for (std::size_t i = n - kMinMatch; i < n; ++i) h = (h + hist_[i] + 1) * 0x9E3779B97F4A7C15ull;
+            h >>= 64 - bits_;
+            if (ptr_ < 0 && table_[h] >= 0) {
+                // Verified: the kMinMatch symbols before the candidate equal the last ones.
+                const std::size_t cand = static_cast<std::size_t>(table_[h]);
+                bool same = cand >= kMinMatch;
+                for (std::size_t i = 1; same && i <= kMinMatch; ++i) same = hist_[cand - i] == hist_[n - i];
+                if (same) ptr_ = table_[h];
+            }
+            table_[h] = static_cast<std::int32_t>(n);
+        }
+    }
+
+    Io& io_;
+    std::unique_ptr<StepContexts> ctx_;
+    unsigned mask_;
+    int bits_;
+    std::vector<std::int32_t> table_;
+    std::vector<std::uint8_t> hist_;
+    std::int64_t ptr_ = -1;
+    std::uint64_t len_ = 0;
+    int prev_ = 0;
+    unsigned turns_ = 0;
+};
+
+}  // namespace
+
+namespace {
+
+std::string write_step_model_order(const Block& block, int order) {
+    Counts c;
+    c.nchains = block.chains.size();
+    for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
+    std::string out;
+    put_varint(out, c.nchains);
+    put_varint(out, c.nsteps);
+    put_u8(out, static_cast<unsigned>(order));
+    put_layout(out, block.layout);
+    EncIo io;
+    StepCoder<EncIo> coder(io, c.nsteps + c.nchains, order);
+    Point ref{};
+    for (const Chain& chain : block.chains) {
+        Point d{};
+        for (int a = 0; a < 2; ++a) d[a] = chain.start[a] - ref[a];
+        coder.start(d);
+        Point pos = chain.start;
+        for (std::size_t k = 0;; ++k) {
+            const int want = k < chain.steps.size() ? step_to_freeman(chain.steps[k]) : kEndSymbol;
+            if (want < 0) return {};
+            if (coder.next(want, pos == chain.start, k == 0, c) == kEndSymbol) break;
+            apply_step(pos, chain.steps[k], 2);
+            ++c.seen_steps;
+        }
+        ref = pos;
+    }
+    out += io.rc.finish();
+    return out;
+}
+
+}  // namespace
+
+std::string write_step_model(const Block& block) {
+    if (block.axes != 2) return {};
+    // The context order is the encoder's choice: the smallest output wins
+    // (a low order learns fast on small or noisy blocks, a high one models
+    // contours).
+    std::string best;
+    for (int order = 1; order <= kMaxStepOrder; ++order) {
+        std::string alt = write_step_model_order(block, order);
+#ifdef STEPZIP_MODEL_STATS
+        std::fprintf(stderr, "order %d: %zu\n", order, alt.size());
+#endif
+        if (alt.empty()) return {};
+        if (best.empty() || alt.size() < best.size()) best = std::move(alt);
+    }
+    return best;
+}
+
+Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
+                             BlockCounts& counts, const std::string& where) {
+    Cursor cur(payload);
+    if (axes != 2) return make_error(Errc::corrupt, where + " byte 0: step-model block on " +
+                                                        std::to_string(axes) + " axes");
+    Counts c;
+    if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
+    if (c.nchains > kMaxBlockChains || c.nsteps > kMaxBlockSteps)
+        return make_error(Errc::limit, where + " byte 0: payload declares more chains or steps than the limits");
+    unsigned order;
+    if (!cur.u8(order) || order > static_cast<unsigned>(kMaxStepOrder))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad context order");
+    auto layout = get_layout(cur, where);
+    if (!layout) return std::move(layout).error();
+    const std::size_t base = cur.pos();
+    DecIo io(payload.substr(base));
+    StepCoder<DecIo> coder(io, c.nsteps + c.nchains, static_cast<int>(order));
+    if (expand) {
+        out.axes = axes;
+        out.chains.clear();
+        out.layout = std::move(*layout);
+    }
+    auto fail = [&](const std::string& what) {
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
+    };
+    Point ref{};
+    for (std::uint64_t i = 0; i < c.nchains; ++i) {
+        Chain chain;
+        chain.axes = axes;
+        const Point d = coder.start(Point{});
+        if (io.failed || io.rc.overrun()) return fail("bad chain start");
+        for (int a = 0; a < 2; ++a) {
+            if ((ref[a] > 0 && d[a] > std::numeric_limits<std::int64_t>::max() - ref[a]) ||
+                (ref[a] < 0 && d[a] < std::numeric_limits<std::int64_t>::min() - ref[a]))
+                return fail("chain start out of range");
+            chain.start[a] = ref[a] + d[a];
+        }
+        Point pos = chain.start;
+        for (bool first = true;; first = false) {
+            const int sym = coder.next(0, pos == chain.start, first, c);
+            if (io.failed || io.rc.overrun()) return fail("bad step");
+            if (sym == kEndSymbol) break;
+            const Step s = freeman_to_step(sym);
+            apply_step(pos, s, 2);
+            ++c.seen_steps;
+            if (expand) chain.steps.push_back(s);
+        }
+        ref = pos;
+        if (expand) out.chains.push_back(std::move(chain));
+    }
+    if (c.seen_steps != c.nsteps) return fail("declared step count does not match");
+    if (!io.rc.finished()) return fail("range-coded stream does not end at the payload's end");
+    counts.chains += c.nchains;
+    counts.steps += c.nsteps;
+    return {};
+}
+
+}  // namespace stepzip::stz
