@@ -16,6 +16,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "modeled_block.hpp"
@@ -49,14 +50,9 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
     return h * 0xBF58476D1CE4E5B9ull;
 }
 
-// The match context hashes a chain start by its kind only, so a repeated
-// chain is found after its first segment wherever it starts.
+// A hash of the item (for finding known segments; not part of the format).
 void seal(Item& it) {
     std::uint64_t h = it.kind;
-    if (it.kind == kStart) {
-        it.hash = mix(h, 0);
-        return;
-    }
     for (int i = 0; i < kMaxAxes; ++i) h = mix(h, static_cast<std::uint64_t>(it.delta[i]));
     for (auto ph : it.phase) h = mix(h, static_cast<std::uint64_t>(ph));
     it.hash = h;
@@ -64,8 +60,6 @@ void seal(Item& it) {
 
 int cap(int v, int hi) { return v < hi ? v : hi; }
 
-// Equal as match contexts: chain starts by kind only.
-bool alike(const Item& a, const Item& b) { return a.kind == kStart ? b.kind == kStart : a == b; }
 
 // Match-length bucket: 0..15 as is, then one bucket per power of two, up to 23.
 int len_bucket(std::uint64_t len) {
@@ -73,7 +67,6 @@ int len_bucket(std::uint64_t len) {
     return cap(16 + bit_length(len) - 5, 23);
 }
 
-constexpr int kMatchBits = 18;
 
 struct Contexts {
     Prob turn[32][8];        // 2D: octant turn, ctx prev turn x prev-L class
@@ -102,11 +95,8 @@ struct Counts {
 template <class Io>
 class SegmentCoder {
 public:
-    // `items` bounds the number of items the block holds (sizes the match table).
-    SegmentCoder(Io& io, Profile p, int axes, std::uint64_t items)
-        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()),
-          bits_(std::clamp(bit_length(items) + 1, 8, kMatchBits)),
-          table_(std::size_t{1} << bits_, -1) {}
+    SegmentCoder(Io& io, Profile p, int axes)
+        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()) {}
 
     void set_grid(std::int64_t g) { grid_ = g; }
 
@@ -114,7 +104,7 @@ public:
     Point start(const Point& want) {
         Item it;
         it.kind = kStart;
-        const Item* pred = predicted(kStart);
+        const std::optional<Item> pred = predicted(kStart);
         bool hit = false;
         if constexpr (!Io::kDecode) io_.field = 0;
         if (pred) hit = code_hit(*pred, want == pred->delta);
@@ -148,7 +138,7 @@ public:
         }
         Item w;
         if (!Io::kDecode) w = item_of(want);
-        const Item* pred = predicted(kSeg);
+        const std::optional<Item> pred = predicted(kSeg);
         bool hit = false;
         if constexpr (!Io::kDecode) io_.field = 2;
         if (pred) hit = code_hit(*pred, w == *pred);
@@ -285,34 +275,60 @@ private:
         return io_.bit(ctx_->hit[len_bucket(len_)][pred.kind], is_hit);
     }
 
-    const Item* predicted(Kind at) const {
-        if (ptr_ < 0 || static_cast<std::size_t>(ptr_) >= hist_.size()) return nullptr;
-        const Item& it = hist_[static_cast<std::size_t>(ptr_)];
-        if ((at == kStart) != (it.kind == kStart)) return nullptr;
-        return &it;
+    // History entries: a segment's shape id, kEndId, or kStartTag | chain
+    // index (its delta in starts_). As a match context a chain start is
+    // kStartTag whatever its delta, so a repeated chain is found after its
+    // first segment wherever it starts.
+    static constexpr std::uint32_t kEndId = 0xFFFFFFFFu, kStartTag = 0x80000000u;
+
+    Item item_at(std::uint32_t id) const {
+        Item it;
+        if (id == kEndId) return it;
+        if (id & kStartTag) {
+            it.kind = kStart;
+            it.delta = starts_[id & ~kStartTag];
+            return it;
+        }
+        return uniq_[id];
     }
 
+    std::optional<Item> predicted(Kind at) const {
+        if (ptr_ < 0) return std::nullopt;
+        const Item it = item_at(hist_[static_cast<std::size_t>(ptr_)]);
+        if ((at == kStart) != (it.kind == kStart)) return std::nullopt;
+        return it;
+    }
+
+    static std::uint32_t context_id(std::uint32_t id) {
+        return id != kEndId && (id & kStartTag) ? kStartTag : id;
+    }
+
+    // Appends an item to the history and moves the match: a verified match
+    // goes on while its predictions come true; otherwise the most recent
+    // earlier position preceded by the same two items (as contexts) is taken.
     void push(const Item& it) {
-        if (ptr_ >= 0 && static_cast<std::size_t>(ptr_) < hist_.size() &&
-            hist_[static_cast<std::size_t>(ptr_)] == it) {
+        std::uint32_t id = kEndId;
+        if (it.kind == kSeg) id = prev_shape_;  // set by note_shape()
+        if (it.kind == kStart) {
+            id = kStartTag | static_cast<std::uint32_t>(starts_.size());
+            starts_.push_back(it.delta);
+        }
+        if (ptr_ >= 0 && item_at(hist_[static_cast<std::size_t>(ptr_)]) == it) {
             ++len_;
             ++ptr_;
         } else {
             len_ = 0;
             ptr_ = -1;
         }
-        hist_.push_back(it);
+        hist_.push_back(id);
         const std::size_t n = hist_.size();
         if (n >= 2) {
-            const std::uint64_t h = mix(hist_[n - 2].hash, hist_[n - 1].hash) >> (64 - bits_);
-            if (ptr_ < 0 && table_[h] >= 0) {
-                // Verified: the two items before the candidate equal the last two
-                // (chain starts compare by kind only, as they are hashed).
-                const std::size_t cand = static_cast<std::size_t>(table_[h]);
-                if (cand >= 2 && alike(hist_[cand - 1], hist_[n - 1]) && alike(hist_[cand - 2], hist_[n - 2]))
-                    ptr_ = table_[h];
+            const std::uint64_t key = (std::uint64_t{context_id(hist_[n - 2])} << 32) | context_id(hist_[n - 1]);
+            auto [slot, fresh] = table_.try_emplace(key, static_cast<std::uint32_t>(n));
+            if (!fresh) {
+                if (ptr_ < 0) ptr_ = slot->second;
+                slot->second = static_cast<std::uint32_t>(n);
             }
-            table_[h] = static_cast<std::int32_t>(n);
         }
     }
 
@@ -420,9 +436,9 @@ private:
     Profile p_;
     int axes_;
     std::unique_ptr<Contexts> ctx_;
-    int bits_;
-    std::vector<std::int32_t> table_;
-    std::vector<Item> hist_;
+    std::unordered_map<std::uint64_t, std::uint32_t> table_;  // context -> next position
+    std::vector<std::uint32_t> hist_;
+    std::vector<Point> starts_;
     std::int64_t ptr_ = -1;
     std::uint64_t len_ = 0;
     int prev_oct_ = 0, prev_turn_ = 0;
@@ -505,7 +521,7 @@ std::string write_segment_model(const Block& block, Profile p,
     put_varint(out, grid);
     put_layout(out, block.layout);
     EncIo io;
-    SegmentCoder<EncIo> coder(io, p, block.axes, 2 * c.nchains + c.nsegments);
+    SegmentCoder<EncIo> coder(io, p, block.axes);
     coder.set_grid(static_cast<std::int64_t>(grid));
     Point ref{};
     for (std::size_t i = 0; i < block.chains.size(); ++i) {
@@ -551,7 +567,7 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    SegmentCoder<DecIo> coder(io, p, axes, 2 * c.nchains + c.nsegments);
+    SegmentCoder<DecIo> coder(io, p, axes);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (expand) {
         out.axes = axes;

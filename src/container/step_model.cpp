@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <unordered_map>
 
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
@@ -22,7 +23,6 @@ namespace {
 
 constexpr int kEndSymbol = 8;
 constexpr std::size_t kMinMatch = 12;    // steps hashed to find a match
-constexpr int kStepMatchBits = 20;
 constexpr int kMaxStepOrder = 4;  // previous turns in the direction context
 
 int cap(int v, int hi) { return v < hi ? v : hi; }
@@ -45,11 +45,8 @@ struct Counts {
 template <class Io>
 class StepCoder {
 public:
-    // `symbols` bounds the number of symbols the block holds (sizes the match table).
-    StepCoder(Io& io, std::uint64_t symbols, int order)
-        : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1),
-          bits_(std::clamp(bit_length(symbols) + 1, 8, kStepMatchBits)),
-          table_(std::size_t{1} << bits_, -1) {}
+    StepCoder(Io& io, int order)
+        : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1) {}
 
     Point start(const Point& want) {
         Point d{};
@@ -102,27 +99,23 @@ private:
             ptr_ = -1;
         }
         hist_.push_back(static_cast<std::uint8_t>(sym));
+        context_ = ((context_ << 4) | static_cast<unsigned>(sym)) & ((std::uint64_t{1} << (4 * kMinMatch)) - 1);
         const std::size_t n = hist_.size();
         if (n >= kMinMatch) {
-            std::uint64_t h = 0;
-            for (std::size_t i = n - kMinMatch; i < n; ++i) h = (h + hist_[i] + 1) * 0x9E3779B97F4A7C15ull;
-            h >>= 64 - bits_;
-            if (ptr_ < 0 && table_[h] >= 0) {
-                // Verified: the kMinMatch symbols before the candidate equal the last ones.
-                const std::size_t cand = static_cast<std::size_t>(table_[h]);
-                bool same = cand >= kMinMatch;
-                for (std::size_t i = 1; same && i <= kMinMatch; ++i) same = hist_[cand - i] == hist_[n - i];
-                if (same) ptr_ = table_[h];
+            // The most recent earlier position preceded by the same kMinMatch symbols.
+            auto [slot, fresh] = table_.try_emplace(context_, static_cast<std::uint32_t>(n));
+            if (!fresh) {
+                if (ptr_ < 0) ptr_ = slot->second;
+                slot->second = static_cast<std::uint32_t>(n);
             }
-            table_[h] = static_cast<std::int32_t>(n);
         }
     }
 
     Io& io_;
     std::unique_ptr<StepContexts> ctx_;
     unsigned mask_;
-    int bits_;
-    std::vector<std::int32_t> table_;
+    std::unordered_map<std::uint64_t, std::uint32_t> table_;  // last kMinMatch symbols -> next position
+    std::uint64_t context_ = 0;
     std::vector<std::uint8_t> hist_;
     std::int64_t ptr_ = -1;
     std::uint64_t len_ = 0;
@@ -144,7 +137,7 @@ std::string write_step_model_order(const Block& block, int order) {
     put_u8(out, static_cast<unsigned>(order));
     put_layout(out, block.layout);
     EncIo io;
-    StepCoder<EncIo> coder(io, c.nsteps + c.nchains, order);
+    StepCoder<EncIo> coder(io, order);
     Point ref{};
     for (const Chain& chain : block.chains) {
         Point d{};
@@ -200,7 +193,7 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    StepCoder<DecIo> coder(io, c.nsteps + c.nchains, static_cast<int>(order));
+    StepCoder<DecIo> coder(io, static_cast<int>(order));
     if (expand) {
         out.axes = axes;
         out.chains.clear();
