@@ -7,7 +7,13 @@
 #include <string>
 #include <vector>
 
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "../src/container/aligned_cut.hpp"
 #include "../src/container/block_codec.hpp"
+#include "../src/container/modeled_block.hpp"
 #include "container_corpus.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/segmenter.hpp"
@@ -116,5 +122,56 @@ void BM_PayloadLayouts(benchmark::State& state) {
     state.SetLabel(std::string(corpus_name(which)) + " L" + std::to_string(level));
 }
 BENCHMARK(BM_PayloadLayouts)->ArgsProduct({{0, 1, 2}, {3, 19}})->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// The block encodings on the real corpora (docs/FORMAT.md "Rationale"):
+// bytes of the first block of each file under the profile `--profile auto`
+// would pick for it, greedy segmenter, level 3: segment records + zstd,
+// segment model (segmenter's cut, default-phase cut), step model, and the
+// decoding time of the whole frame. Run from the source root (or set
+// STEPZIP_CORPORA): build/bench/container_bench --benchmark_filter=Corpus
+const char* const kCorpusFiles[] = {
+    "plotter/gnuplot-eval4.fc", "plotter/gnuplot-grbl.fc", "plotter/hershey-eval4.fc",
+    "plotter/hershey-grbl.fc",  "plotter/hershey-patent.fc", "glyphs/dejavu-4.fc",
+    "glyphs/dejavu-8.fc",       "random/walk-4.fc",        "random/walk-8.fc"};
+
+void BM_CorpusEncodings(benchmark::State& state) {
+    const char* rel = kCorpusFiles[state.range(0)];
+    const char* dir = std::getenv("STEPZIP_CORPORA");  // default: run from the source root
+    std::ifstream f(std::string(dir ? dir : "corpora") + "/" + rel, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    const std::string text = ss.str();
+    BlockReader reader(InputFormat::freeman, rel);
+    Block block;
+    if (!reader.feed(text, true) || !reader.next(block)) {
+        state.SkipWithError("cannot read the corpus file");
+        return;
+    }
+    auto frame = compress(text);
+    if (!frame) {
+        state.SkipWithError(frame.error().message.c_str());
+        return;
+    }
+    const Profile p = static_cast<Profile>(static_cast<unsigned char>((*frame)[5]));
+    std::vector<std::vector<Segment>> segs(block.chains.size()), aligned(block.chains.size());
+    bool aligned_ok = true;
+    for (std::size_t i = 0; i < block.chains.size(); ++i) {
+        (void)segment_steps(block.chains[i].steps, 2, p, SegmenterKind::greedy, segs[i]);
+        aligned_ok = aligned_ok && stz::cut_preferring_default(block.chains[i].steps, 2, p, aligned[i]);
+    }
+    for (auto _ : state) {
+        auto r = decompress(*frame);
+        if (!r || *r != text) state.SkipWithError("round trip failed");
+    }
+    state.counters["records"] = static_cast<double>(
+        stz::make_block_record(stz::kChains, 0, stz::write_chain_payload(block, p, segs), 3).size());
+    state.counters["seg_model"] = static_cast<double>(stz::write_segment_model(block, p, segs).size());
+    if (aligned_ok)
+        state.counters["seg_aligned"] = static_cast<double>(stz::write_segment_model(block, p, aligned).size());
+    state.counters["step_model"] = static_cast<double>(stz::write_step_model(block).size());
+    state.counters["frame"] = static_cast<double>(frame->size());
+    state.SetLabel(std::string(rel) + " " + std::string(profile_name(p)));
+}
+BENCHMARK(BM_CorpusEncodings)->DenseRange(0, 8)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -75,7 +75,7 @@ struct Contexts {
     UIntModel lead[24];      // L - 1, ctx bit_length(prev L) (cap 11) x (turn != 0)
     UIntModel minor[12];     // S - prediction, ctx bit_length(L) (cap 11)
     UIntModel phase[12];     // phase - default, ctx bit_length(L) (cap 11)
-    UIntModel start[kMaxAxes];  // chain start - previous end, per axis
+    UIntModel start[kMaxAxes][8];  // chain start - previous end, per axis x size class
     Prob end[8];             // end of chain, ctx (at start point) x segments so far
     Prob hit[24][3];         // match hit, ctx length bucket x predicted kind
     Prob succ_in[4][2];      // segment followed the previous one before, ctx list size x previous was
@@ -109,11 +109,18 @@ public:
         if constexpr (!Io::kDecode) io_.field = 0;
         if (pred) hit = code_hit(*pred, want == pred->delta);
         if constexpr (!Io::kDecode) io_.field = 1;
+        std::int64_t last_v = 0;
         if (hit) {
             it = *pred;
+            prev_start0_ = it.delta[0] / grid_;
         } else {
             for (int i = 0; i < axes_; ++i) {
-                const std::int64_t v = code_sint(io_, ctx_->start[i], want[i] / grid_);
+                // Context: size class of the axis coded before (axis 0: of the
+                // previous chain's axis-0 value).
+                const std::uint64_t before = static_cast<std::uint64_t>(std::llabs(i == 0 ? prev_start0_ : last_v));
+                const std::int64_t v = code_sint(io_, ctx_->start[i][cap(bit_length(before), 7)], want[i] / grid_);
+                last_v = v;
+                if (i == 0) prev_start0_ = v;
                 if (v > (std::int64_t{1} << 62) / grid_ || v < -(std::int64_t{1} << 62) / grid_)
                     io_.failed = true;
                 else
@@ -428,7 +435,6 @@ private:
             if (io_.failed || !r.contains(def + d)) return fail("phase out of range");
             seg.phase[k] = def + d;
         }
-        note_segment(seg);
         return true;
     }
 
@@ -455,6 +461,7 @@ private:
     int prev_known_ = 0;
     std::uint64_t prev_rank_ = 0;
     std::int64_t grid_ = 1;
+    std::int64_t prev_start0_ = 0;
 };
 
 std::int64_t steps_of(Profile p, const Segment& s, int axes) {
