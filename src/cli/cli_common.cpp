@@ -5,8 +5,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <utility>
 
 namespace stepzip::cli {
@@ -22,6 +26,56 @@ std::pair<std::string, std::string> split_path(const std::string& path) {
     const auto slash = path.find_last_of('/');
     if (slash == std::string::npos) return {".", path};
     return {slash == 0 ? "/" : path.substr(0, slash), path.substr(slash + 1)};
+}
+
+// Temporary files to remove if a signal ends the program. A slot holds a
+// heap copy of the path (never moved while registered), so the handler only
+// loads pointers and calls unlink(), both async-signal-safe.
+constexpr int kSignalSlots = 16;
+std::atomic<char*> g_temp_files[kSignalSlots];
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+extern "C" void remove_temp_files_and_die(int sig) {
+    for (auto& slot : g_temp_files)
+        if (char* path = slot.load()) ::unlink(path);
+    static const char msg[] = "stepzip: interrupted by a signal; partial output removed\n";
+    [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+}
+
+void install_signal_handlers() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (int sig : kCleanupSignals) {
+            struct sigaction old {};
+            if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+            struct sigaction sa {};
+            sa.sa_handler = remove_temp_files_and_die;
+            sigemptyset(&sa.sa_mask);
+            for (int s : kCleanupSignals) sigaddset(&sa.sa_mask, s);
+            ::sigaction(sig, &sa, nullptr);
+        }
+    });
+}
+
+// Registers `path` for removal on a signal; returns the slot, or -1 when all
+// slots are taken (the file is then only removed by the destructor).
+int register_temp_file(const std::string& path) {
+    install_signal_handlers();
+    char* copy = ::strdup(path.c_str());
+    if (!copy) return -1;
+    for (int i = 0; i < kSignalSlots; ++i) {
+        char* expected = nullptr;
+        if (g_temp_files[i].compare_exchange_strong(expected, copy)) return i;
+    }
+    std::free(copy);
+    return -1;
+}
+
+void unregister_temp_file(int slot) noexcept {
+    if (slot < 0) return;
+    std::free(g_temp_files[slot].exchange(nullptr));
 }
 
 }  // namespace
@@ -85,7 +139,9 @@ OutputFile::OutputFile(OutputFile&& other) noexcept
     : target_(std::move(other.target_)),
       temp_(std::move(other.temp_)),
       file_(std::exchange(other.file_, nullptr)),
+      signal_slot_(std::exchange(other.signal_slot_, -1)),
       to_stdout_(other.to_stdout_),
+      direct_(other.direct_),
       done_(std::exchange(other.done_, true)) {}
 
 OutputFile& OutputFile::operator=(OutputFile&& other) noexcept {
@@ -94,7 +150,9 @@ OutputFile& OutputFile::operator=(OutputFile&& other) noexcept {
         target_ = std::move(other.target_);
         temp_ = std::move(other.temp_);
         file_ = std::exchange(other.file_, nullptr);
+        signal_slot_ = std::exchange(other.signal_slot_, -1);
         to_stdout_ = other.to_stdout_;
+        direct_ = other.direct_;
         done_ = std::exchange(other.done_, true);
     }
     return *this;
@@ -105,6 +163,7 @@ void OutputFile::discard() noexcept {
         std::fclose(file_);
         if (!done_ && !temp_.empty()) ::unlink(temp_.c_str());
     }
+    unregister_temp_file(std::exchange(signal_slot_, -1));
     file_ = nullptr;
 }
 
@@ -120,12 +179,36 @@ Result<OutputFile> OutputFile::open(const std::string& path, bool force) {
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0) {
         if (S_ISDIR(st.st_mode)) return make_error(Errc::io, path + ": is a directory");
+        if (!S_ISREG(st.st_mode)) {
+            // A device or FIFO: write to it in place; renaming a temporary
+            // file over it would replace the device node.
+            const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+            if (fd < 0) return io_error(path, errno);
+            out.file_ = ::fdopen(fd, "wb");
+            if (!out.file_) {
+                const int err = errno;
+                ::close(fd);
+                return io_error(path, err);
+            }
+            out.direct_ = true;
+            return out;
+        }
         if (!force) return make_error(Errc::io, path + ": already exists (use -f to overwrite)");
     }
     const auto [dir, base] = split_path(path);
     std::string temp = dir + "/." + base + ".stepzip-XXXXXX";
+    // Signals are held while the file is created and registered, so that
+    // none can leave it behind.
+    install_signal_handlers();
+    sigset_t hold, previous;
+    sigemptyset(&hold);
+    for (int sig : kCleanupSignals) sigaddset(&hold, sig);
+    ::sigprocmask(SIG_BLOCK, &hold, &previous);
     const int fd = ::mkstemp(temp.data());
-    if (fd < 0) return io_error(path, errno);
+    const int mkstemp_errno = errno;
+    if (fd >= 0) out.signal_slot_ = register_temp_file(temp);
+    ::sigprocmask(SIG_SETMASK, &previous, nullptr);
+    if (fd < 0) return io_error(path, mkstemp_errno);
     // mkstemp creates the file 0600; give it the mode a plain open() would.
     const mode_t mask = ::umask(0);
     ::umask(mask);
@@ -155,6 +238,13 @@ Result<void> OutputFile::commit() {
         done_ = true;
         return {};
     }
+    if (direct_) {
+        const int err = std::fclose(file_) != 0 ? errno : 0;
+        file_ = nullptr;
+        done_ = true;
+        if (err != 0) return io_error(target_, err);
+        return {};
+    }
     if (::fsync(::fileno(file_)) != 0) return io_error(target_, errno);
     if (std::fclose(file_) != 0) {
         const int err = errno;
@@ -169,6 +259,7 @@ Result<void> OutputFile::commit() {
         return io_error(target_, err);
     }
     done_ = true;
+    unregister_temp_file(std::exchange(signal_slot_, -1));
     return {};
 }
 

@@ -41,7 +41,11 @@ void note(std::string_view message);
 /// next to the target that commit() flushes, syncs and renames over the target.
 /// If commit() is never reached (an error, an early return) the destructor
 /// removes the temporary file, so a failure never leaves a partial output and
-/// never touches an existing file.
+/// never touches an existing file. SIGINT, SIGTERM and SIGHUP (unless they
+/// were ignored when the program started) remove every open temporary file
+/// before the program dies of the signal. A target that exists and is not a
+/// regular file (/dev/null, a FIFO, a terminal) is written directly, never
+/// replaced.
 class OutputFile {
 public:
     OutputFile() = default;
@@ -52,7 +56,7 @@ public:
     OutputFile& operator=(const OutputFile&) = delete;
 
     /// Opens the output `path` ("-" / empty: standard output). An existing
-    /// file is refused unless `force`. Errors: Errc::io
+    /// regular file is refused unless `force`. Errors: Errc::io
     /// "PATH: already exists (use -f to overwrite)" or "PATH: <reason>".
     static Result<OutputFile> open(const std::string& path, bool force);
 
@@ -73,7 +77,9 @@ private:
     std::string target_;
     std::string temp_;
     std::FILE* file_ = nullptr;
+    int signal_slot_ = -1;  ///< registration of temp_ for the signal handler
     bool to_stdout_ = false;
+    bool direct_ = false;   ///< an existing non-regular target, written in place
     bool done_ = false;
 };
 

@@ -34,7 +34,8 @@ int profile_max_axes(Profile p) noexcept { return profile_eight_connected(p) ? k
 int phase_count(Profile p, int axes) noexcept { return profile_eight_connected(p) ? axes - 1 : 1; }
 
 namespace {
-std::int64_t ceil_half(std::int64_t l) { return (l + 1) / 2; }
+// ceil(l / 2) for l >= 0, without overflow at INT64_MAX.
+std::int64_t ceil_half(std::int64_t l) { return l / 2 + (l & 1); }
 // A function decides nothing when one letter of its two-letter pattern is absent.
 bool degenerate(Profile p, std::int64_t a, std::int64_t b) {
     return profile_eight_connected(p) ? (b == 0 || b == a) : (a == 0 || b == 0);
