@@ -34,6 +34,8 @@ Result<std::string> to_freeman(const Chain& chain);
 Result<Chain> from_freeman(std::int64_t x0, std::int64_t y0, std::string_view codes);
 
 /// The points visited by `chain`, start included (steps.size() + 1 points).
+/// Thread-safe (as are all functions in this header); does not check that
+/// the steps are valid on chain.axes axes.
 std::vector<Point> chain_points(const Chain& chain);
 
 }  // namespace stepzip

@@ -28,11 +28,15 @@ enum class InputFormat : std::uint8_t {
     steps = 2,    ///< binary STEP/DIR log, one byte per tick, up to 4 axes
 };
 
+/// The format's command-line name ("freeman", "points", "steps"); "?" for a
+/// value outside the enum. Thread-safe.
 std::string_view format_name(InputFormat f) noexcept;
+/// The format with that name, or nullopt. Thread-safe.
 std::optional<InputFormat> parse_format(std::string_view name) noexcept;
 
 /// Guesses the format from the first bytes of an input (up to a few KiB).
-/// Returns nullopt when no format fits.
+/// Returns nullopt when no format fits. Thread-safe. Does not promise that
+/// the whole input parses in the guessed format.
 std::optional<InputFormat> detect_format(std::string_view head) noexcept;
 
 /// Default number of steps per block.
@@ -101,12 +105,14 @@ private:
 };
 
 /// Convenience: the canonical text (or bytes) of whole chains in `format`.
+/// Thread-safe.
 /// Errors: Errc::invalid_argument when a chain does not fit the format
 /// (e.g. freeman needs two axes, steps at most four axes and a start at 0).
 Result<std::string> write_chains(InputFormat format, const std::vector<Chain>& chains);
 
 /// Convenience: parses a whole input held in memory into chains (pieces of
-/// a chain split across blocks are joined).
+/// a chain split across blocks are joined). Errors: as BlockReader::feed().
+/// Thread-safe. Memory: the whole input's chains (use BlockReader to bound it).
 Result<std::vector<Chain>> read_chains(InputFormat format, std::string_view data,
                                        std::string source = "<input>");
 

@@ -40,7 +40,8 @@ enum class Errc : int {
     mismatch = 70,
 };
 
-/// A short fixed name for an error code ("syntax", "checksum", ...).
+/// A short fixed name for an error code ("syntax", "checksum", ...); never
+/// null, a static string. Thread-safe.
 const char* errc_name(Errc code) noexcept;
 
 /// An error: a code and a message that names where (file, line, column or

@@ -29,6 +29,7 @@ inline constexpr Profile kAllProfiles[] = {Profile::eval4, Profile::eval8, Profi
                                            Profile::grbl, Profile::marlin};
 
 /// The profile's name as used on the command line ("eval4", ...).
+/// Every function in this header is thread-safe (no shared state).
 std::string_view profile_name(Profile p) noexcept;
 /// Parses a profile name; nullopt for an unknown name.
 std::optional<Profile> parse_profile(std::string_view name) noexcept;

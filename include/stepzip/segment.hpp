@@ -27,6 +27,7 @@ struct Segment {
 };
 
 /// The leading axis of `delta`: the lowest-index axis with the largest |total|.
+/// Thread-safe (as are all functions in this header).
 int leading_axis(const Point& delta, int axes) noexcept;
 
 /// Number of steps (ticks) in the segment under a 4-connected profile

@@ -9,4 +9,6 @@
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
 #include "stepzip/step.hpp"
+#include "stepzip/streaming.hpp"
+#include "stepzip/vectors.hpp"
 #include "stepzip/version.hpp"

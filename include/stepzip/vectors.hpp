@@ -75,7 +75,9 @@ Result<StepSize> parse_step_size(std::string_view text);
 /// Vector input formats.
 enum class VectorFormat : std::uint8_t { gcode, hpgl };
 
+/// "gcode" or "hpgl". Thread-safe.
 std::string_view vector_format_name(VectorFormat f) noexcept;
+/// The format with that name, or nullopt. Thread-safe.
 std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
 
 /// Guesses G-code or HP-GL from the first bytes of a file: HP-GL when the
@@ -140,7 +142,7 @@ Result<Drawing> read_gcode(std::string_view text, const VectorReadOptions& optio
 /// Thread-safe.
 Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& options = {});
 
-/// Dispatches to read_gcode / read_hpgl.
+/// Dispatches to read_gcode / read_hpgl. Thread-safe.
 Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
                              const VectorReadOptions& options = {});
 
@@ -201,6 +203,7 @@ struct SegmentedChain {
 /// The drawing of segmented two-axis chains: one path per chain that has
 /// steps, one line move per segment (its end point), starting at the chain's
 /// start. Errors: Errc::unsupported for a chain that is not two-axis.
+/// Thread-safe. Does not check that the segments expand to the chain.
 Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains);
 
 /// Feed words for G-code output, from the feed-rate block (seed 000, see
