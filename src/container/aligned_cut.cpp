@@ -4,10 +4,16 @@
 // (GRBL, Marlin, the seeds' interpolators) is cut at its original vector
 // ends, so its segments repeat and cost no phase; the free-phase greedy cut
 // may run a few steps past a vector end and shift every later cut.
-// Complexity: O(n log n) for the recognizer plus O(64 · L) per segment for the
-// default-phase check. Encoder only; the decoder does not depend on the cut.
+// Complexity, two axes: O(log n) per run of identical steps for the
+// recognizer (run_word.hpp), O(L) per segment start for the letter
+// positions, and O(1) per candidate length plus O(S) for the one that is
+// taken (the default-phase pattern's letters are found by division, see
+// emit_two_letter in src/interpolate/linear.cpp). More axes: O(64 · L) per
+// segment (the patterns are expanded). Encoder only; the decoder does not
+// depend on the cut.
 #include <algorithm>
 
+#include "../segment/run_word.hpp"
 #include "aligned_cut.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
@@ -28,10 +34,120 @@ bool default_exact(Profile p, std::span<const Step> run, int axes, std::vector<S
     return scratch.size() == run.size() && std::equal(scratch.begin(), scratch.end(), run.begin());
 }
 
+// Longest exact segment at steps[0], read run by run (as the greedy
+// segmenter reads it).
+std::size_t longest_exact(detail::RunSegment& rec, std::span<const Step> steps) {
+    rec.reset();
+    const std::size_t n = steps.size();
+    std::int64_t best = 0;
+    std::size_t pos = 0;
+    while (pos < n) {
+        const Step s = steps[pos];
+        std::size_t e = pos + 1;
+        while (e < n && steps[e] == s) ++e;
+        const auto k = static_cast<std::int64_t>(e - pos);
+        const auto r = rec.probe(s, k);
+        if (r.lo <= r.hi) best = rec.length() + r.hi;
+        if (r.alive < k) break;
+        rec.commit(s, k);
+        pos = e;
+    }
+    return static_cast<std::size_t>(best);
+}
+
+// Two axes: the window's letters (ticks where each axis moves) and the
+// test whether a prefix is the profile's default-phase pattern.
+class TwoAxisWindow {
+public:
+    TwoAxisWindow(Profile p) : p_(p), eight_(profile_eight_connected(p)) {}
+
+    void load(std::span<const Step> w) {
+        for (int a = 0; a < 2; ++a) {
+            ticks_[a].clear();
+            sign_[a] = 1;
+        }
+        for (std::size_t t = 0; t < w.size(); ++t)
+            for (int a = 0; a < 2; ++a)
+                if (const int d = step_axis(w[t], a); d != 0) {
+                    ticks_[a].push_back(static_cast<std::int64_t>(t));
+                    sign_[a] = d;
+                }
+    }
+
+    // The default-phase segment of the first k steps, if it draws them.
+    bool default_exact(std::size_t k, Segment& seg) const {
+        std::int64_t cnt[2];
+        for (int a = 0; a < 2; ++a)
+            cnt[a] = std::upper_bound(ticks_[a].begin(), ticks_[a].end(), static_cast<std::int64_t>(k) - 1) -
+                     ticks_[a].begin();
+        Point delta{};
+        for (int a = 0; a < 2; ++a) delta[a] = sign_[a] * cnt[a];
+        seg = default_segment(p_, delta, 2);
+        // Rule of emit_two_letter: n ticks, s `other` letters at the ticks of
+        // the minor axis (8-connected: the non-leading axis; eval4: y).
+        const int minor = eight_ ? (cnt[0] >= cnt[1] ? 1 : 0) : 1;
+        const std::int64_t n = static_cast<std::int64_t>(k), s = cnt[minor];
+        if (eight_ && cnt[1 - minor] != n) return false;  // the leading axis moves every tick
+        if (!eight_ && cnt[0] + cnt[1] != n) return false;
+        if (s == 0 || s == n) return true;
+        const std::int64_t f0 = seg.phase[0];
+        if (f0 < -s || f0 >= n - s) return false;
+        const std::vector<std::int64_t>& at = ticks_[minor];
+        auto tick = [&](std::int64_t j) { return (j * n + f0 + s) / s; };  // (j + 1)-th letter
+        if (at[static_cast<std::size_t>(s - 1)] != tick(s - 1) || at[0] != tick(0) ||
+            at[static_cast<std::size_t>(s / 2)] != tick(s / 2))
+            return false;
+        for (std::int64_t j = 1; j < s - 1; ++j)
+            if (at[static_cast<std::size_t>(j)] != tick(j)) return false;
+        return true;
+    }
+
+private:
+    Profile p_;
+    bool eight_;
+    std::vector<std::int64_t> ticks_[2];
+    int sign_[2];
+};
+
+bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& out) {
+    detail::RunSegment rec(p, 2);
+    TwoAxisWindow win(p);
+    std::size_t i = 0;
+    while (i < steps.size()) {
+        const std::size_t valid = longest_exact(rec, steps.subspan(i));
+        if (valid == 0) return false;
+        win.load(steps.subspan(i, valid));
+        Segment seg;
+        std::size_t take = 0;
+        const std::size_t floor = valid > static_cast<std::size_t>(kBackoff) ? valid - kBackoff : 1;
+        for (std::size_t k = valid; k >= floor && k * 2 >= valid; --k)
+            if (win.default_exact(k, seg)) {
+                take = k;
+                break;
+            }
+        if (take == 0) {
+            auto fit = fit_segment(p, steps.subspan(i, valid), 2);
+            if (!fit) return false;
+            seg = *fit;
+            take = valid;
+        }
+        out.push_back(seg);
+        i += take;
+    }
+    return true;
+}
+
 }  // namespace
 
 bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
                             std::vector<Segment>& out) {
+    if (p == Profile::patent) return false;
+    if (axes == 2) return cut_two_axes(steps, p, out);
+    return cut_preferring_default_reference(steps, axes, p, out);
+}
+
+bool cut_preferring_default_reference(std::span<const Step> steps, int axes, Profile p,
+                                      std::vector<Segment>& out) {
     if (p == Profile::patent) return false;
     SegmentRecognizer rec(p, axes);
     std::vector<Step> scratch;

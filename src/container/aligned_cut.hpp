@@ -19,4 +19,10 @@ namespace stepzip::stz {
 bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
                             std::vector<Segment>& out);
 
+/// The same cut read step by step, with every candidate pattern expanded
+/// (the reference the fast two-axis path is tested against; used for more
+/// than two axes).
+bool cut_preferring_default_reference(std::span<const Step> steps, int axes, Profile p,
+                                      std::vector<Segment>& out);
+
 }  // namespace stepzip::stz

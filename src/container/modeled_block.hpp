@@ -18,8 +18,9 @@ std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs);
 
 /// Payload of a step-model block (block type 4); empty when the block is not
-/// two-axis (the step model codes Freeman directions only).
-std::string write_step_model(const Block& block);
+/// two-axis (the step model codes Freeman directions only). `order` 1..4
+/// fixes the context order; 0 tries every order and keeps the smallest.
+std::string write_step_model(const Block& block, int order = 0);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
 /// `expand`) and add its counts to `counts`. Errors: Errc::corrupt,

@@ -42,6 +42,58 @@ struct Counts {
     std::uint64_t nchains = 0, nsteps = 0, seen_steps = 0;
 };
 
+// The match table: the last kMinMatch symbols (each 0..8, packed base 9 in
+// 39 bits) -> the history position that followed them most recently. Open
+// addressing, one 64-bit slot per entry (key << 25 | position; a position
+// is at least kMinMatch, so 0 marks an empty slot). Positions are below
+// 2^25 (kMaxBlockSteps + kMaxBlockChains symbols). Same answers as a map.
+class MatchTable {
+public:
+    static constexpr int kPosBits = 25;
+    MatchTable() : slots_(1u << 12, 0) {}
+
+    // Stores `pos` under `key`; returns the position stored before (0: none).
+    std::uint32_t exchange(std::uint64_t key, std::uint32_t pos) {
+        if ((used_ + 1) * 2 > slots_.size()) grow();
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t i = index(key, mask);; i = (i + 1) & mask) {
+            const std::uint64_t v = slots_[i];
+            if (v == 0) {
+                slots_[i] = (key << kPosBits) | pos;
+                ++used_;
+                return 0;
+            }
+            if ((v >> kPosBits) == key) {
+                slots_[i] = (key << kPosBits) | pos;
+                return static_cast<std::uint32_t>(v & ((1u << kPosBits) - 1));
+            }
+        }
+    }
+
+private:
+    static std::size_t index(std::uint64_t key, std::size_t mask) {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    }
+    void grow() {
+        std::vector<std::uint64_t> old(slots_.size() * 2, 0);
+        old.swap(slots_);
+        const std::size_t mask = slots_.size() - 1;
+        for (std::uint64_t v : old) {
+            if (v == 0) continue;
+            std::size_t i = index(v >> kPosBits, mask);
+            while (slots_[i] != 0) i = (i + 1) & mask;
+            slots_[i] = v;
+        }
+    }
+    std::vector<std::uint64_t> slots_;
+    std::size_t used_ = 0;
+};
+
+static_assert(kMaxBlockSteps + kMaxBlockChains < (std::uint64_t{1} << MatchTable::kPosBits));
+static_assert(kMinMatch == 12);  // 9^12 < 2^39: key and position share one 64-bit slot
+
+constexpr std::uint64_t pow9(int k) { return k == 0 ? 1 : 9 * pow9(k - 1); }
+
 template <class Io>
 class StepCoder {
 public:
@@ -99,23 +151,21 @@ private:
             ptr_ = -1;
         }
         hist_.push_back(static_cast<std::uint8_t>(sym));
-        context_ = ((context_ << 4) | static_cast<unsigned>(sym)) & ((std::uint64_t{1} << (4 * kMinMatch)) - 1);
         const std::size_t n = hist_.size();
+        if (n > kMinMatch) context_ -= hist_[n - 1 - kMinMatch] * pow9(kMinMatch - 1);
+        context_ = context_ * 9 + static_cast<unsigned>(sym);
         if (n >= kMinMatch) {
             // The most recent earlier position preceded by the same kMinMatch symbols.
-            auto [slot, fresh] = table_.try_emplace(context_, static_cast<std::uint32_t>(n));
-            if (!fresh) {
-                if (ptr_ < 0) ptr_ = slot->second;
-                slot->second = static_cast<std::uint32_t>(n);
-            }
+            const std::uint32_t before = table_.exchange(context_, static_cast<std::uint32_t>(n));
+            if (before != 0 && ptr_ < 0) ptr_ = before;
         }
     }
 
     Io& io_;
     std::unique_ptr<StepContexts> ctx_;
     unsigned mask_;
-    std::unordered_map<std::uint64_t, std::uint32_t> table_;  // last kMinMatch symbols -> next position
-    std::uint64_t context_ = 0;
+    MatchTable table_;          // last kMinMatch symbols -> next position
+    std::uint64_t context_ = 0;  // last kMinMatch symbols, base 9
     std::vector<std::uint8_t> hist_;
     std::int64_t ptr_ = -1;
     std::uint64_t len_ = 0;
@@ -159,8 +209,9 @@ std::string write_step_model_order(const Block& block, int order) {
 
 }  // namespace
 
-std::string write_step_model(const Block& block) {
+std::string write_step_model(const Block& block, int order) {
     if (block.axes != 2) return {};
+    if (order >= 1 && order <= kMaxStepOrder) return write_step_model_order(block, order);
     // The context order is the encoder's choice: the smallest output wins
     // (a low order learns fast on small or noisy blocks, a high one models
     // contours).

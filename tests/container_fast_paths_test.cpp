@@ -1,0 +1,146 @@
+// The encoder's and decoder's fast paths give exactly the answers of the
+// step-by-step definitions they replace:
+//  * two-axis expansion by division per run (src/interpolate/linear.cpp)
+//    equals the per-step rules of docs/FORMAT.md section 2 for every
+//    (dx, dy, phase) in a range, phases outside the exact range included;
+//  * the two-axis default-phase cut (aligned_cut.cpp) equals the reference
+//    cut that expands every candidate pattern, on random chains drawn by
+//    the profiles' own interpolators and on random walks.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "../src/container/aligned_cut.hpp"
+#include "stepzip/interpolate/linear.hpp"
+#include "stepzip/profile.hpp"
+
+namespace stepzip {
+namespace {
+
+int sgn(std::int64_t v) { return (v > 0) - (v < 0); }
+
+// The evaluation-function rule (seed 000), written out step by step.
+std::vector<Step> eval4_steps(std::int64_t dx, std::int64_t dy, std::int64_t f0) {
+    std::vector<Step> out;
+    const std::int64_t a = std::llabs(dx), b = std::llabs(dy);
+    std::int64_t kx = a, ky = b, f = f0;
+    while (kx > 0 || ky > 0) {
+        bool x = f >= 0;
+        if (x && kx == 0) x = false;
+        else if (!x && ky == 0) x = true;
+        if (x) { out.push_back(make_step2(sgn(dx), 0)); --kx; f -= b; }
+        else { out.push_back(make_step2(0, sgn(dy))); --ky; f += a; }
+    }
+    return out;
+}
+
+// The accelerated rule (leading axis), step by step.
+std::vector<Step> eval8_steps(std::int64_t dx, std::int64_t dy, std::int64_t f0) {
+    std::vector<Step> out;
+    const bool xl = std::llabs(dx) >= std::llabs(dy);
+    const std::int64_t l = xl ? std::llabs(dx) : std::llabs(dy), s = xl ? std::llabs(dy) : std::llabs(dx);
+    std::int64_t f = f0;
+    for (std::int64_t t = 0; t < l; ++t) {
+        bool diag;
+        if (s == 0) diag = false;
+        else if (s == l) diag = true;
+        else if (f >= 0) { diag = false; f -= s; }
+        else { diag = true; f += l - s; }
+        out.push_back(diag ? make_step2(sgn(dx), sgn(dy)) : xl ? make_step2(sgn(dx), 0) : make_step2(0, sgn(dy)));
+    }
+    return out;
+}
+
+TEST(FastExpansion, Eval4EqualsStepRuleOverWholeRange) {
+    for (std::int64_t dx = -24; dx <= 24; ++dx)
+        for (std::int64_t dy = -24; dy <= 24; ++dy) {
+            if (dx == 0 && dy == 0) continue;
+            const std::int64_t a = std::llabs(dx), b = std::llabs(dy);
+            for (std::int64_t f0 = -b - 3; f0 <= a + 3; ++f0) {
+                std::vector<Step> fast;
+                eval_linear(dx, dy, f0, fast);
+                ASSERT_EQ(fast, eval4_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
+            }
+        }
+}
+
+TEST(FastExpansion, TwoAxisLeadingEqualsStepRuleOverWholeRange) {
+    for (std::int64_t dx = -24; dx <= 24; ++dx)
+        for (std::int64_t dy = -24; dy <= 24; ++dy) {
+            if (dx == 0 && dy == 0) continue;
+            const std::int64_t l = std::max(std::llabs(dx), std::llabs(dy));
+            for (std::int64_t f0 = -l - 3; f0 <= l + 3; ++f0) {
+                std::vector<Step> fast;
+                const Point d{dx, dy};
+                multiaxis_linear(d, 2, &f0, fast);
+                ASSERT_EQ(fast, eval8_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
+            }
+        }
+}
+
+TEST(FastExpansion, LongSegmentsEqualStepRule) {
+    std::mt19937_64 rng(7);
+    for (int i = 0; i < 2000; ++i) {
+        const std::int64_t l = 1 + static_cast<std::int64_t>(rng() % 100000);
+        const std::int64_t s = static_cast<std::int64_t>(rng() % (l + 1));
+        const std::int64_t f0 = -s + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(l));
+        std::vector<Step> fast;
+        const Point d{l, -s};
+        multiaxis_linear(d, 2, &f0, fast);
+        ASSERT_EQ(fast, eval8_steps(l, -s, f0));
+        fast.clear();
+        eval_linear(-s, l, f0, fast);
+        ASSERT_EQ(fast, eval4_steps(-s, l, f0));
+    }
+}
+
+// A chain of segments drawn at the profile's default phase (a controller
+// stream), with a few random steps mixed in.
+std::vector<Step> controller_chain(Profile p, std::mt19937_64& rng) {
+    std::vector<Step> steps;
+    const int n = 1 + static_cast<int>(rng() % 40);
+    for (int i = 0; i < n; ++i) {
+        if (rng() % 6 == 0) {
+            const int code = static_cast<int>(rng() % 8);
+            if (profile_eight_connected(p) || code % 2 == 0) steps.push_back(freeman_to_step(code));
+            continue;
+        }
+        const std::int64_t l = 1 + static_cast<std::int64_t>(rng() % 200);
+        const std::int64_t s = static_cast<std::int64_t>(rng() % (l + 1));
+        Point d{};
+        const bool swap = rng() % 2;
+        d[swap ? 1 : 0] = rng() % 2 ? l : -l;
+        d[swap ? 0 : 1] = rng() % 2 ? s : -s;
+        expand_segment(p, default_segment(p, d, 2), 2, steps);
+    }
+    return steps;
+}
+
+TEST(FastAlignedCut, EqualsReferenceCut) {
+    std::mt19937_64 rng(11);
+    for (Profile p : {Profile::eval4, Profile::eval8, Profile::grbl, Profile::marlin}) {
+        for (int round = 0; round < 300; ++round) {
+            std::vector<Step> steps = controller_chain(p, rng);
+            std::vector<Segment> fast, ref;
+            const bool ok_fast = stz::cut_preferring_default(steps, 2, p, fast);
+            const bool ok_ref = stz::cut_preferring_default_reference(steps, 2, p, ref);
+            ASSERT_EQ(ok_fast, ok_ref);
+            ASSERT_EQ(fast, ref) << profile_name(p) << " round " << round;
+        }
+        for (int round = 0; round < 100; ++round) {
+            std::vector<Step> steps;
+            const int n = static_cast<int>(rng() % 400);
+            for (int k = 0; k < n; ++k) {
+                const int code = static_cast<int>(rng() % 8);
+                steps.push_back(freeman_to_step(profile_eight_connected(p) ? code : code & 6));
+            }
+            std::vector<Segment> fast, ref;
+            ASSERT_EQ(stz::cut_preferring_default(steps, 2, p, fast),
+                      stz::cut_preferring_default_reference(steps, 2, p, ref));
+            ASSERT_EQ(fast, ref) << profile_name(p) << " walk " << round;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace stepzip
