@@ -51,7 +51,7 @@ struct Settings {
 constexpr int kThoroughLevel = 10;
 // Below kThoroughLevel: steps of the first block's sample that picks the
 // profile and the cut under --profile auto.
-constexpr std::uint64_t kSampleSteps = 1u << 16;
+constexpr std::uint64_t kSampleSteps = 1u << 15;
 // Segments per 1000 steps below which the segment model always wins and
 // above which the step model always wins (measured on corpora/: 8.6..52
 // against 383..663); in between both are encoded.
@@ -147,11 +147,21 @@ void run_job(Job& job, const Settings& s) {
     bool segment_model_only = false;
     if (representable(job.block, s.profile, s.axes)) {
         std::vector<std::vector<Segment>> segs;
-        auto r = segment_block(job.block, s.profile, s.segmenter, segs, job.stats, job.first_chain,
-                               s.source);
-        if (!r) {
-            job.error = std::move(r).error();
-            return;
+        // Below kThoroughLevel, when the sample chose the default-phase cut,
+        // it is the only cut made (the chains were checked by representable()).
+        bool aligned = !s.thorough && s.aligned_cut && s.segmenter != SegmenterKind::patent;
+        if (aligned) {
+            segs.assign(job.block.chains.size(), {});
+            for (std::size_t c = 0; aligned && c < job.block.chains.size(); ++c)
+                aligned = cut_preferring_default(job.block.chains[c].steps, job.block.axes, s.profile, segs[c]);
+        }
+        if (!aligned) {
+            auto r = segment_block(job.block, s.profile, s.segmenter, segs, job.stats, job.first_chain,
+                                   s.source);
+            if (!r) {
+                job.error = std::move(r).error();
+                return;
+            }
         }
         std::uint64_t nsegs = 0;
         for (const auto& v : segs) nsegs += v.size();
@@ -163,7 +173,7 @@ void run_job(Job& job, const Settings& s) {
         if (s.thorough || job.block.axes != 2 || nsegs * 1000 <= kStepModelOnly * block_steps) {
             const std::string model =
                 s.thorough ? segment_model_payload(job.block, s.profile, segs, s.segmenter)
-                           : fast_segment_model(job.block, s.profile, segs, s.aligned_cut);
+                           : fast_segment_model(job.block, s.profile, segs, s.aligned_cut && !aligned);
             if (model.size() <= kMaxBlockPayload)
                 consider(kSegmentModel, make_stored_record(kSegmentModel, flags, model));
         }
