@@ -12,7 +12,7 @@ namespace stepzip::stz {
 inline void put_u8(std::string& out, unsigned v) { out.push_back(static_cast<char>(v & 0xFFu)); }
 
 inline void put_le(std::string& out, std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFFu));
+    for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>(i < 8 ? (v >> (8 * i)) & 0xFFu : 0));
 }
 
 inline std::uint64_t get_le(const char* p, int bytes) {
