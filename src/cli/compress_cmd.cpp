@@ -84,8 +84,10 @@ int cmd_compress(const std::vector<std::string>& args) {
                                           "smallest output on the first block)")
         ("segmenter", po::value(&segmenter), "greedy|optimal|patent (default: greedy below "
                                              "-L 19, optimal at 19)")
-        ("level,L", po::value(&level), "1 (fastest) .. 19 (smallest), default 3")
-        ("threads,T", po::value(&threads), "compress blocks on N threads (0 = all cores); "
+        ("level,L", po::value(&level), "1 (fastest) .. 19 (smallest), default 3; below 10 the "
+                                       "profile, cut and block kind are chosen on samples, from 10 "
+                                       "every encoding is tried, 19 adds the optimal segmenter")
+        ("threads,T", po::value(&threads), "compress blocks on N threads (0 = all cores; default 1); "
                                            "output does not depend on N")
         ("format", po::value(&format), "freeman|points|steps (default: detected)")
         ("block-size", po::value(&block_steps), "steps per block (default 1048576)")
