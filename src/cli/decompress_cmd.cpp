@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/container.hpp"
 #include "stz_stream.hpp"
 
@@ -70,27 +71,9 @@ int cmd_decompress(const std::vector<std::string>& args) {
         ("quiet,q", po::bool_switch(&a.quiet), "no messages but errors")
         ("progress", "show progress on a terminal (default)")
         ("no-progress", "never show progress");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&a.inputs));
-    po::options_description all;
-    all.add(desc).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", -1);
     po::variables_map vm;
-    try {
-        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                      .options(all)
-                      .positional(pos)
-                      .run(),
-                  vm);
-        po::notify(vm);
-    } catch (const po::error& e) {
-        return usage_error(std::string("decompress: ") + e.what());
-    }
-    if (vm.count("help")) {
-        std::cout << desc << "\n";
-        return 0;
-    }
+    if (auto exit_code = parse_command("decompress", args, desc, "input", po::value(&a.inputs), -1, vm))
+        return *exit_code;
     if (vm.count("no-progress")) a.progress = false;
     if (vm.count("keep") && a.remove) return usage_error("decompress: -k and --rm conflict");
     if (a.inputs.empty()) a.inputs.push_back("-");

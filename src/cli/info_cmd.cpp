@@ -6,6 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/container.hpp"
 #include "stz_stream.hpp"
 
@@ -20,27 +21,9 @@ int cmd_info(const std::vector<std::string>& args) {
         "Prints the profile, chains, steps, segments, bits/step and sizes of a .stz\n"
         "(block checksums are checked; 'verify' checks the decoded content).\nOptions");
     desc.add_options()("help,h", "show this help");
-    po::options_description hidden;
-    hidden.add_options()("file", po::value(&files));
-    po::options_description all;
-    all.add(desc).add(hidden);
-    po::positional_options_description pos;
-    pos.add("file", -1);
     po::variables_map vm;
-    try {
-        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                      .options(all)
-                      .positional(pos)
-                      .run(),
-                  vm);
-        po::notify(vm);
-    } catch (const po::error& e) {
-        return usage_error(std::string("info: ") + e.what());
-    }
-    if (vm.count("help")) {
-        std::cout << desc << "\n";
-        return 0;
-    }
+    if (auto exit_code = parse_command("info", args, desc, "file", po::value(&files), -1, vm))
+        return *exit_code;
     if (files.empty()) files.push_back("-");
     int status = 0;
     for (const std::string& f : files) {

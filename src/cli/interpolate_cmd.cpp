@@ -9,6 +9,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/interpolate/arc.hpp"
 #include "stepzip/profile.hpp"
@@ -49,28 +50,9 @@ int cmd_interpolate(const std::vector<std::string>& args) {
          "evaluation for 4-connected profiles, accelerated for 8-connected)")
         ("line-method", po::value(&line_arg),
          "line interpolator: profile (default), dda, carrier");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&input));
-    po::options_description all;
-    all.add(desc).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", 1);
-
     po::variables_map vm;
-    try {
-        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                      .options(all)
-                      .positional(pos)
-                      .run(),
-                  vm);
-        po::notify(vm);
-    } catch (const po::error& e) {
-        return usage_error(std::string("interpolate: ") + e.what());
-    }
-    if (vm.count("help")) {
-        std::cout << desc << "\n";
-        return 0;
-    }
+    if (auto exit_code = parse_command("interpolate", args, desc, "input", po::value(&input), 1, vm))
+        return *exit_code;
     if (profile_arg.empty()) return usage_error("interpolate: --profile is required");
     const auto profile = parse_profile(profile_arg);
     if (!profile) return usage_error("interpolate: unknown profile '" + profile_arg + "'");

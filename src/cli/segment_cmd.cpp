@@ -11,6 +11,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segmenter.hpp"
@@ -90,28 +91,9 @@ int cmd_segment(const std::vector<std::string>& args) {
          "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
          "(x sqrt 2)")
         ("quiet,q", "no notes on stderr");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&input));
-    po::options_description all;
-    all.add(desc).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", 1);
-
     po::variables_map vm;
-    try {
-        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                      .options(all)
-                      .positional(pos)
-                      .run(),
-                  vm);
-        po::notify(vm);
-    } catch (const po::error& e) {
-        return usage_error(std::string("segment: ") + e.what());
-    }
-    if (vm.count("help")) {
-        std::cout << desc << "\n";
-        return 0;
-    }
+    if (auto exit_code = parse_command("segment", args, desc, "input", po::value(&input), 1, vm))
+        return *exit_code;
     if (to_arg.empty()) return usage_error("segment: --to is required");
     const auto to = parse_vector_out(to_arg);
     if (!to) return usage_error("segment: unknown output '" + to_arg + "'");

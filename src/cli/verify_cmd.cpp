@@ -6,6 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/container.hpp"
 #include "stz_stream.hpp"
 
@@ -23,27 +24,9 @@ int cmd_verify(const std::vector<std::string>& args) {
         "Options");
     desc.add_options()("help,h", "show this help")("quiet,q", po::bool_switch(&quiet),
                                                    "print nothing on success");
-    po::options_description hidden;
-    hidden.add_options()("file", po::value(&files));
-    po::options_description all;
-    all.add(desc).add(hidden);
-    po::positional_options_description pos;
-    pos.add("file", 2);
     po::variables_map vm;
-    try {
-        po::store(po::command_line_parser(std::vector<std::string>(args.begin() + 1, args.end()))
-                      .options(all)
-                      .positional(pos)
-                      .run(),
-                  vm);
-        po::notify(vm);
-    } catch (const po::error& e) {
-        return usage_error(std::string("verify: ") + e.what());
-    }
-    if (vm.count("help")) {
-        std::cout << desc << "\n";
-        return 0;
-    }
+    if (auto exit_code = parse_command("verify", args, desc, "file", po::value(&files), 2, vm))
+        return *exit_code;
     if (files.empty()) return usage_error("verify: INPUT.stz is required");
     InputStream in;
     if (auto r = in.open(files[0]); !r) return report(r.error());
