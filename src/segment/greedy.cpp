@@ -5,6 +5,7 @@
 #include "stepzip/segment/recognizer.hpp"
 #include "internal.hpp"
 #include "run_word.hpp"
+#include "two_axis.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
 namespace stepzip {
@@ -85,12 +86,27 @@ std::int64_t longest_patent(std::span<const Step> steps) {
 std::int64_t GreedySegmenter::longest(std::span<const Step> steps) const {
     if (steps.empty()) return 0;
     if (profile_ == Profile::patent) return longest_patent(steps);
+    if (axes_ == 2) return detail::TwoAxisGreedy(profile_).longest(steps);
     detail::RunSegment rec(profile_, axes_);
     return longest_linear(rec, steps);
 }
 
 void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out) const {
     const bool patent = profile_ == Profile::patent;
+    if (!patent && axes_ == 2) {
+        detail::TwoAxisGreedy rec(profile_);
+        for (std::size_t pos = 0; pos < steps.size();) {
+            const auto rest = steps.subspan(pos);
+            auto m = static_cast<std::size_t>(rec.longest(rest));
+            auto seg = rec.fit(static_cast<std::int64_t>(m));
+            assert(seg.has_value());
+            // As below: never reached when the recognizer is right.
+            while (!seg && m > 1) seg = fit_segment(profile_, rest.first(--m), axes_);
+            out.push_back(*seg);
+            pos += m;
+        }
+        return;
+    }
     detail::RunSegment rec(patent ? Profile::eval4 : profile_, axes_);
     std::size_t pos = 0;
     while (pos < steps.size()) {

@@ -28,6 +28,17 @@ Result<void> profile_accepts(Profile p, std::span<const Step> steps, int axes) {
                                                       " does not take " + std::to_string(axes) +
                                                       " axes");
     const bool eight = profile_eight_connected(p);
+    // Fast check, branch-free per step: no bit past the axes, no DIR bit on
+    // a resting axis, some axis moving, one moving axis when 4-connected.
+    // The loop below names the first offending step.
+    const unsigned past = axes < kMaxAxes ? ~0u << (2 * axes) : ~0u << (2 * kMaxAxes);
+    unsigned bad = 0;
+    for (const Step s : steps) {
+        const unsigned moves = s & 0x555u;
+        bad |= (s & past) | ((s >> 1) & ~s & 0x555u) | static_cast<unsigned>(moves == 0) |
+               static_cast<unsigned>(!eight && (moves & (moves - 1)) != 0);
+    }
+    if (bad == 0) return {};
     for (std::size_t i = 0; i < steps.size(); ++i) {
         if (!step_valid(steps[i], axes))
             return make_error(Errc::invalid_argument,

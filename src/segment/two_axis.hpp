@@ -1,0 +1,78 @@
+// Greedy cut of two-axis chains under a linear profile (not installed).
+//
+// On two axes every linear profile reduces to one two-letter word: under
+// eval4 letter 0 is an x-step and letter 1 a y-step; under the 8-connected
+// profiles letter 1 is a diagonal and letter 0 a step on one axis (the
+// leading axis moves on every tick, so its own word is all ones). A segment
+// holds at most two distinct step values, one per letter, and they must be
+// compatible (one sign per axis; for the 8-connected profiles the axis step
+// is a projection of the diagonal). TwoAxisGreedy reads runs of identical
+// steps into one RunWord-equivalent state held in place (no per-axis loops,
+// no profile switches) and decides each run with multiplications only; a
+// division is needed only on the run where the word stops being a digital
+// straight segment or where the run's last step is not a valid end. Its
+// answers are those of RunSegment and of the letter-by-letter
+// SegmentRecognizer (tests/recognizer_test.cpp, tests/segmenter_two_axis_test.cpp).
+// Complexity: O(log h) per run, h = hull vertices; fit() is O(runs).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "stepzip/profile.hpp"
+#include "stepzip/segment.hpp"
+#include "stepzip/step.hpp"
+
+namespace stepzip::detail {
+
+class TwoAxisGreedy {
+public:
+    /// Precondition: p is not Profile::patent.
+    explicit TwoAxisGreedy(Profile p);
+    /// Length of the longest exact segment at steps[0] (>= 1; 0 for empty
+    /// input). The steps must be valid for the profile on two axes.
+    std::int64_t longest(std::span<const Step> steps);
+    /// fit_segment(p, steps.first(m), 2), for m = longest(steps) called just
+    /// before on the same steps (it reuses the runs that call read).
+    /// nullopt only if the prefix is not one exact segment.
+    std::optional<Segment> fit(std::int64_t m) const;
+
+private:
+    struct Pt {
+        std::int64_t p, q;
+    };
+    struct Frac {  // n/d; d == 0 stands for +infinity where noted
+        std::int64_t n, d;
+    };
+    void reset() noexcept;
+    // A run of k letters 0 (ones): returns how many keep the word a DSS and
+    // sets `best` to the largest valid prefix length of the run (0: none).
+    std::int64_t zeros(std::int64_t k, std::int64_t& best) const noexcept;
+    std::int64_t ones(std::int64_t k, std::int64_t& best) const noexcept;
+    void commit_zeros(std::int64_t k);
+    void commit_ones(std::int64_t k);
+    void push_zero(Pt c);
+    void push_one(Pt c);
+
+    Profile profile_;
+    bool eight_;
+    // Word state, as RunWord (run_word.hpp), with sentinels instead of flags:
+    // lo_ = -1/1 when unset, hi_ = 1/0 (+infinity), r_ = 0/1, s_ = 1/0.
+    std::vector<Pt> zeros_hull_;
+    std::vector<Pt> ones_hull_;
+    Frac lo_{}, hi_{}, r_{}, s_{};
+    std::int64_t p_ = 0, q_ = 0;
+    // The runs read by the last longest(): letter of the first run, run
+    // lengths (letters alternate), the step value of each letter.
+    int first_letter_ = 0;
+    std::vector<std::int64_t> runs_;
+    Step value_[2] = {0, 0};
+    std::int64_t best_count_[2] = {0, 0};  // letters of the longest valid prefix
+    // The last longest() was decided by the short-word table: its letters.
+    bool short_ = false;
+    unsigned short_bits_ = 0;
+};
+
+}  // namespace stepzip::detail
