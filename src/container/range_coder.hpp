@@ -9,6 +9,7 @@
 // Complexity: O(1) per bit. Not thread-safe (one object per block).
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -18,45 +19,61 @@
 namespace stepzip::stz {
 
 /// Probability that the next bit is 0, in 1/65536 units (1..65535), and the
-/// number of bits seen in this context (saturates at 255).
+/// number of bits seen in this context (saturates at 255). `n` is 16 bits
+/// wide (the struct is 4 bytes either way): a store through a char type
+/// could alias the coder's state and keep it out of registers.
 struct Prob {
     std::uint16_t p = 32768;
-    std::uint8_t n = 0;
+    std::uint16_t n = 0;
 };
 
 inline constexpr int kMaxShift = 5;
 
+namespace detail {
+// shift = min(kMaxShift, floor(log2(n + 2))) for every n (0..255).
+struct ShiftTable {
+    std::uint8_t v[256];
+    constexpr ShiftTable() : v() {
+        for (int n = 0; n < 256; ++n) {
+            int shift = 0;
+            for (unsigned m = static_cast<unsigned>(n) + 2u; m > 1; m >>= 1) ++shift;
+            v[n] = static_cast<std::uint8_t>(shift < kMaxShift ? shift : kMaxShift);
+        }
+    }
+};
+inline constexpr ShiftTable kShift{};
+}  // namespace detail
+
 /// Adaptation: shift = min(kMaxShift, floor(log2(n + 2))); then
 /// bit 0: p += (65536 - p) >> shift, bit 1: p -= p >> shift; n += 1.
-inline void update(Prob& pr, int bit) noexcept {
-    unsigned v = pr.n + 2u;
-    int shift = 0;
-    while (v > 1) {
-        v >>= 1;
-        ++shift;
-    }
-    if (shift > kMaxShift) shift = kMaxShift;
-    if (bit)
-        pr.p = static_cast<std::uint16_t>(pr.p - (pr.p >> shift));
-    else
-        pr.p = static_cast<std::uint16_t>(pr.p + ((65536u - pr.p) >> shift));
-    if (pr.n < 255) ++pr.n;
+/// Branch-free: the shift comes from a table, both updates are computed and
+/// one is selected.
+[[gnu::always_inline]] inline void update(Prob& pr, int bit) noexcept {
+    const unsigned shift = detail::kShift.v[pr.n];
+    const unsigned p = pr.p;
+    const unsigned down = p - (p >> shift);
+    const unsigned up = p + ((65536u - p) >> shift);
+    pr.p = static_cast<std::uint16_t>(bit ? down : up);
+    pr.n = static_cast<std::uint16_t>(pr.n + (pr.n < 255));
 }
 
 class RangeEncoder {
 public:
-    void encode(Prob& pr, int bit) {
+    [[gnu::always_inline]] void encode(Prob& pr, int bit) {
         const std::uint32_t bound = (range_ >> 16) * pr.p;
-        if (bit) {
-            low_ += bound;
-            range_ -= bound;
-        } else {
-            range_ = bound;
-        }
+        const std::uint32_t mask = 0u - static_cast<std::uint32_t>(bit != 0);
+        low_ += bound & mask;
+        range_ = (bound & ~mask) | ((range_ - bound) & mask);
         update(pr, bit);
-        while (range_ < (1u << 24)) {
+        // range >= 2^8 after any bit (p >= 1, range >= 2^24 before it): at
+        // most two shifts.
+        if (range_ < (1u << 24)) [[unlikely]] {
             range_ <<= 8;
             shift_low();
+            if (range_ < (1u << 24)) {
+                range_ <<= 8;
+                shift_low();
+            }
         }
     }
     /// Flushes and returns the coded bytes (the always-zero first byte of the
@@ -96,22 +113,15 @@ public:
     explicit RangeDecoder(std::string_view in) : in_(in) {
         for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next();
     }
-    int decode(Prob& pr) {
+    [[gnu::always_inline]] int decode(Prob& pr) {
         const std::uint32_t bound = (range_ >> 16) * pr.p;
-        int bit;
-        if (code_ < bound) {
-            range_ = bound;
-            bit = 0;
-        } else {
-            code_ -= bound;
-            range_ -= bound;
-            bit = 1;
-        }
+        const int bit = code_ >= bound;
+        // Branch-free select: the bit is what the model could not predict.
+        const std::uint32_t mask = 0u - static_cast<std::uint32_t>(bit);
+        code_ -= bound & mask;
+        range_ = (bound & ~mask) | ((range_ - bound) & mask);
         update(pr, bit);
-        while (range_ < (1u << 24)) {
-            range_ <<= 8;
-            code_ = (code_ << 8) | next();
-        }
+        if (range_ < (1u << 24)) [[unlikely]] normalize();
         return bit;
     }
     bool overrun() const noexcept { return overrun_; }
@@ -120,6 +130,25 @@ public:
     std::size_t pos() const noexcept { return pos_; }
 
 private:
+    // range >= 2^8 after any bit: at most two bytes are needed.
+    [[gnu::always_inline]] void normalize() {
+        if (pos_ + 2 <= in_.size()) [[likely]] {
+            const auto* b = reinterpret_cast<const unsigned char*>(in_.data()) + pos_;
+            range_ <<= 8;
+            code_ = (code_ << 8) | b[0];
+            ++pos_;
+            if (range_ < (1u << 24)) {
+                range_ <<= 8;
+                code_ = (code_ << 8) | b[1];
+                ++pos_;
+            }
+            return;
+        }
+        while (range_ < (1u << 24)) {
+            range_ <<= 8;
+            code_ = (code_ << 8) | next();
+        }
+    }
     std::uint32_t next() {
         if (pos_ < in_.size()) return static_cast<unsigned char>(in_[pos_++]);
         overrun_ = true;
@@ -138,7 +167,7 @@ struct EncIo {
     bool failed = false;
     int field = 0;           // statistics: field being coded
     double cost[16] = {};    // statistics: bits spent per field (STEPZIP_MODEL_STATS builds)
-    int bit(Prob& p, int b) {
+    [[gnu::always_inline]] int bit(Prob& p, int b) {
 #ifdef STEPZIP_MODEL_STATS
         const double q = p.p / 65536.0;
         cost[field] -= std::log2(b ? 1 - q : q);
@@ -153,18 +182,11 @@ struct DecIo {
     explicit DecIo(std::string_view in) : rc(in) {}
     RangeDecoder rc;
     bool failed = false;
-    int bit(Prob& p, int) { return rc.decode(p); }
+    [[gnu::always_inline]] int bit(Prob& p, int) { return rc.decode(p); }
 };
 
 /// Bit length of v (0 for 0).
-inline int bit_length(std::uint64_t v) noexcept {
-    int n = 0;
-    while (v) {
-        v >>= 1;
-        ++n;
-    }
-    return n;
-}
+inline int bit_length(std::uint64_t v) noexcept { return static_cast<int>(std::bit_width(v)); }
 
 /// Adaptive Exp-Golomb code of an unsigned value v < 2^kUIntMaxBits - 1:
 /// k = bit_length(v + 1) - 1 in unary (k ones then a zero, the i-th unary bit
@@ -210,7 +232,7 @@ std::int64_t code_sint(Io& io, UIntModel& m, std::int64_t v) {
 /// A value of `nbits` bits, high to low, through a binary tree of contexts
 /// `tree[1 .. 2^nbits - 1]` (node 1 the root, node 2n + b the child).
 template <class Io>
-unsigned code_tree(Io& io, Prob* tree, int nbits, unsigned v) {
+[[gnu::always_inline]] inline unsigned code_tree(Io& io, Prob* tree, int nbits, unsigned v) {
     unsigned node = 1;
     for (int i = nbits - 1; i >= 0; --i) node = (node << 1) | static_cast<unsigned>(io.bit(tree[node], (v >> i) & 1u));
     return node - (1u << nbits);

@@ -17,7 +17,6 @@
 #include <memory>
 #include <numeric>
 #include <optional>
-#include <unordered_map>
 
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
@@ -92,27 +91,168 @@ struct Counts {
     std::uint64_t seen_segments = 0, seen_steps = 0;
 };
 
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+// The recent-shapes list (move to front, at most kShapes entries) kept as
+// last-use times: a shape's rank is the number of listed shapes used after
+// it, counted in a Fenwick tree over a window of kWindow times; when the
+// window is used up, the listed shapes are renumbered 1..size in the same
+// order. Same answers as the list.
+// Complexity: O(log kWindow) per rank, lookup or use; amortized O(1) renumbering.
+class RecentShapes {
+public:
+    std::size_t size() const { return size_; }
+
+    // Rank of `id` (0 = most recent), or kNone when it is not listed.
+    std::uint32_t rank(std::uint32_t id) const {
+        const std::uint32_t t = id < time_of_.size() ? time_of_[id] : 0;
+        if (t == 0) return kNone;
+        return static_cast<std::uint32_t>(size_) - prefix(t);
+    }
+    // The shape of rank r < size().
+    std::uint32_t at(std::size_t r) const { return id_at_[nth(static_cast<std::uint32_t>(size_ - r))]; }
+
+    // Moves `id` to the front (inserting it, and dropping the least recent
+    // shape when the list is full).
+    void use(std::uint32_t id) {
+        if (id >= time_of_.size()) time_of_.resize(std::max<std::size_t>(id + 1, time_of_.size() * 2), 0);
+        if (clock_ == kWindow) renumber();
+        std::uint32_t& t = time_of_[id];
+        if (t != 0) {
+            add(t, -1);
+        } else if (size_ == kShapes) {
+            const std::uint32_t oldest = nth(1);
+            add(oldest, -1);
+            time_of_[id_at_[oldest]] = 0;
+        } else {
+            ++size_;
+        }
+        t = ++clock_;
+        id_at_[t] = id;
+        add(t, +1);
+    }
+
+private:
+    static constexpr std::uint32_t kWindow = 4096;  // a power of two, at least 2 * kShapes
+
+    void add(std::uint32_t t, int d) {
+        for (; t <= kWindow; t += t & (0u - t)) tree_[t] = static_cast<std::uint16_t>(tree_[t] + d);
+    }
+    std::uint32_t prefix(std::uint32_t t) const {
+        std::uint32_t s = 0;
+        for (; t != 0; t &= t - 1) s += tree_[t];
+        return s;
+    }
+    // Smallest time t with prefix(t) == k (1 <= k <= size).
+    std::uint32_t nth(std::uint32_t k) const {
+        std::uint32_t t = 0;
+        for (std::uint32_t step = kWindow; step != 0; step >>= 1)
+            if (t + step <= kWindow && tree_[t + step] < k) {
+                t += step;
+                k -= tree_[t];
+            }
+        return t + 1;
+    }
+    void renumber() {
+        std::uint32_t n = 0;
+        for (std::uint32_t t = 1; t <= kWindow; ++t) {
+            const std::uint32_t id = id_at_[t];
+            if (time_of_[id] == t) {
+                time_of_[id] = ++n;
+                id_at_[n] = id;
+            }
+        }
+        tree_.fill(0);
+        for (std::uint32_t t = 1; t <= kWindow; ++t) {  // linear Fenwick build: times 1..n set
+            if (t <= n) tree_[t] = static_cast<std::uint16_t>(tree_[t] + 1);
+            const std::uint32_t up = t + (t & (0u - t));
+            if (up <= kWindow) tree_[up] = static_cast<std::uint16_t>(tree_[up] + tree_[t]);
+        }
+        clock_ = n;
+    }
+
+    std::array<std::uint16_t, kWindow + 1> tree_{};  // Fenwick tree over times 1..kWindow
+    std::array<std::uint32_t, kWindow + 1> id_at_{};  // shape last used at each time
+    std::vector<std::uint32_t> time_of_;              // listed shape -> its time; 0: not listed
+    std::uint32_t clock_ = 0;
+    std::size_t size_ = 0;
+};
+
+// Shapes that followed a shape (move to front, at most kSuccessors).
+struct Successors {
+    std::array<std::uint32_t, kSuccessors> id;
+    std::uint32_t size = 0;
+    void use(std::uint32_t s) {
+        std::uint32_t k = 0;
+        while (k < size && id[k] != s) ++k;
+        if (k == size) {
+            if (size < kSuccessors) ++size;
+            k = size - 1;
+        }
+        for (; k > 0; --k) id[k] = id[k - 1];
+        id[0] = s;
+    }
+};
+
+// Open-addressing hash table from a 64-bit key to a nonzero 32-bit value
+// (0: absent). Grows at half load.
+class FlatMap {
+public:
+    FlatMap() : slots_(std::size_t{1} << 10) {}
+    // The value stored under `key` (0: none); stores `value` in its place.
+    std::uint32_t exchange(std::uint64_t key, std::uint32_t value) {
+        if ((used_ + 1) * 2 > slots_.size()) grow();
+        Slot& s = find(slots_, key);
+        const std::uint32_t before = s.value;
+        if (before == 0) ++used_;
+        s.key = key;
+        s.value = value;
+        return before;
+    }
+
+private:
+    struct Slot {
+        std::uint64_t key = 0;
+        std::uint32_t value = 0;
+    };
+    static Slot& find(std::vector<Slot>& slots, std::uint64_t key) {
+        const std::size_t mask = slots.size() - 1;
+        std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+        while (slots[i].value != 0 && slots[i].key != key) i = (i + 1) & mask;
+        return slots[i];
+    }
+    void grow() {
+        std::vector<Slot> old(slots_.size() * 2);
+        old.swap(slots_);
+        for (const Slot& s : old)
+            if (s.value != 0) find(slots_, s.key) = s;
+    }
+    std::vector<Slot> slots_;
+    std::size_t used_ = 0;
+};
+
 template <class Io>
 class SegmentCoder {
 public:
     SegmentCoder(Io& io, Profile p, int axes)
-        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()) {}
+        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
+        succ_.resize(1);  // succ_[0]: after no segment
+    }
 
     void set_grid(std::int64_t g) { grid_ = g; }
 
     // Codes a chain start delta (encoder: `want`); returns it.
     Point start(const Point& want) {
-        Item it;
-        it.kind = kStart;
-        const std::optional<Item> pred = predicted(kStart);
+        const std::uint32_t pred = predicted(kStart);
         bool hit = false;
         if constexpr (!Io::kDecode) io_.field = 0;
-        if (pred) hit = code_hit(*pred, want == pred->delta);
+        if (pred != kNoPrediction) hit = code_hit(kStart, want == starts_[pred & ~kStartTag]);
         if constexpr (!Io::kDecode) io_.field = 1;
+        Point delta{};
         std::int64_t last_v = 0;
         if (hit) {
-            it = *pred;
-            prev_start0_ = it.delta[0] / grid_;
+            delta = starts_[pred & ~kStartTag];
+            prev_start0_ = delta[0] / grid_;
         } else {
             for (int i = 0; i < axes_; ++i) {
                 // Context: size class of the axis coded before (axis 0: of the
@@ -124,13 +264,14 @@ public:
                 if (v > (std::int64_t{1} << 62) / grid_ || v < -(std::int64_t{1} << 62) / grid_)
                     io_.failed = true;
                 else
-                    it.delta[i] = v * grid_;
+                    delta[i] = v * grid_;
             }
-            seal(it);
         }
         prev_shape_ = kNone;
-        push(it);
-        return it.delta;
+        const std::uint32_t id = kStartTag | static_cast<std::uint32_t>(starts_.size());
+        starts_.push_back(delta);
+        push(id, pred != kNoPrediction && starts_[pred & ~kStartTag] == delta);
+        return delta;
     }
 
     // Codes what follows in a chain: a segment (returns true, `seg` set) or
@@ -138,189 +279,191 @@ public:
     // the end. Decoder errors set io.failed or `error_`.
     bool next(const Segment* want, bool at_start_point, std::uint64_t in_chain, const Counts& c,
               Segment& seg) {
-        Item it;
+        const std::uint32_t pred = predicted(kSeg);
         if (c.seen_steps == c.nsteps || c.seen_segments == c.nsegments) {
-            push(it);  // forced end: no bits
+            push(kEndId, pred == kEndId);  // forced end: no bits
             return false;
         }
+        // Encoder: the wanted item (kEndId, a known shape id, or kNewShape
+        // with `w` the new shape).
         Item w;
-        if (!Io::kDecode) w = item_of(want);
-        const std::optional<Item> pred = predicted(kSeg);
+        std::uint32_t want_id = kEndId;
+        if constexpr (!Io::kDecode) {
+            if (want) {
+                w = item_of(*want);
+                want_id = find_shape(w);
+            }
+        }
         bool hit = false;
         if constexpr (!Io::kDecode) io_.field = 2;
-        if (pred) hit = code_hit(*pred, w == *pred);
+        if (pred != kNoPrediction) hit = code_hit(pred == kEndId ? kEnd : kSeg, want_id == pred);
+        std::uint32_t id = kEndId;
+        bool coded_in_full = false;
         if (hit) {
-            it = *pred;
+            id = pred;
         } else {
             bool end = false;
             if constexpr (!Io::kDecode) io_.field = 3;
-            if (!(pred && pred->kind == kEnd))
+            if (pred != kEndId)
                 end = io_.bit(ctx_->end[(at_start_point ? 4 : 0) + cap(static_cast<int>(in_chain), 3)],
-                              w.kind == kEnd);
+                              want_id == kEndId);
             if (!end) {
                 if constexpr (!Io::kDecode) io_.field = 8;
-                const std::uint32_t id = code_shape(w);
+                id = code_shape(want_id);
                 if (io_.failed) return fail("bad shape rank");
-                if (id != kNone) {
-                    it = uniq_[id];
-                } else {
+                if (id == kNewShape) {
                     if (!code_segment(want, seg)) return false;
-                    it = item_of(&seg);
+                    coded_in_full = true;
+                    if constexpr (Io::kDecode) {
+                        w = item_of(seg);
+                        id = find_shape(w);
+                    } else {
+                        id = want_id;
+                    }
                 }
             }
         }
-        if (it.kind == kSeg) {
-            segment_of(it, seg);
-            note_segment(seg);
-            note_shape(it);
+        if (id == kEndId) {
+            push(kEndId, pred == kEndId);
+            return false;
         }
-        push(it);
-        return it.kind == kSeg;
+        if (id == kNewShape) id = add_shape(w);
+        if (!coded_in_full) segment_of(uniq_[id], seg);
+        note_segment(seg);
+        note_shape(id);
+        push(id, pred == id);
+        return true;
     }
 
     const std::string& error() const { return error_; }
 
 private:
-    static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+    // History entries: a segment's shape id, kEndId, or kStartTag | chain
+    // index (its delta in starts_). As a match context a chain start is
+    // kStartTag whatever its delta, so a repeated chain is found after its
+    // first segment wherever it starts.
+    static constexpr std::uint32_t kEndId = 0xFFFFFFFFu, kStartTag = 0x80000000u;
+    // Not a history entry: no prediction; a shape that is not known yet.
+    static constexpr std::uint32_t kNoPrediction = 0xFFFFFFFEu, kNewShape = 0xFFFFFFFDu;
+    static_assert(kNone == kEndId);  // prev_shape_ "none" is succ_[0]
 
-    // Index of a known segment (kNone if new).
+    static bool is_start(std::uint32_t id) { return id != kEndId && (id & kStartTag); }
+
+    // Index of a known segment (kNewShape if new).
     std::uint32_t find_shape(const Item& it) const {
-        auto range = by_hash_.equal_range(it.hash);
-        for (auto k = range.first; k != range.second; ++k)
-            if (uniq_[k->second] == it) return k->second;
-        return kNone;
+        const std::size_t mask = shape_index_.size() - 1;
+        for (std::size_t i = static_cast<std::size_t>(it.hash >> 20) & mask; shape_index_[i] != 0; i = (i + 1) & mask) {
+            const std::uint32_t id = shape_index_[i] - 1;
+            if (uniq_[id].hash == it.hash && uniq_[id] == it) return id;
+        }
+        return kNewShape;
     }
 
-    static void move_to_front(std::vector<std::uint32_t>& list, std::uint32_t id, std::size_t limit) {
-        std::size_t k = 0;
-        while (k < list.size() && list[k] != id) ++k;
-        if (k == list.size()) {
-            if (list.size() < limit) list.push_back(id);
-            k = list.size() - 1;
+    std::uint32_t add_shape(const Item& it) {
+        const auto id = static_cast<std::uint32_t>(uniq_.size());
+        uniq_.push_back(it);
+        succ_.emplace_back();
+        if (uniq_.size() * 2 > shape_index_.size()) {
+            shape_index_.assign(shape_index_.size() * 2, 0);
+            for (std::uint32_t k = 0; k < uniq_.size(); ++k) index_shape(k);
+        } else {
+            index_shape(id);
         }
-        for (; k > 0; --k) list[k] = list[k - 1];
-        list[0] = id;
+        return id;
+    }
+    void index_shape(std::uint32_t id) {
+        const std::size_t mask = shape_index_.size() - 1;
+        std::size_t i = static_cast<std::size_t>(uniq_[id].hash >> 20) & mask;
+        while (shape_index_[i] != 0) i = (i + 1) & mask;
+        shape_index_[i] = id + 1;
     }
 
     // Codes whether the segment is one that followed the previous segment
     // before (and which), else one of the recent segments (and which);
-    // returns its index, or kNone for a new segment.
-    std::uint32_t code_shape(const Item& w) {
-        const std::uint32_t want = Io::kDecode ? kNone : find_shape(w);
-        auto found = succ_.find(prev_shape_);
-        if (found != succ_.end()) {
-            const std::vector<std::uint32_t>& list = found->second;
+    // returns its index, or kNewShape. Encoder: `want` is the shape's id
+    // (kNewShape: not known).
+    std::uint32_t code_shape(std::uint32_t want) {
+        const Successors& list = succ_[prev_shape_ + 1];
+        if (list.size != 0) {
             std::size_t r = 0;
-            while (r < list.size() && list[r] != want) ++r;
-            const int size_class = cap(static_cast<int>(list.size()) - 1, 3);
-            if (io_.bit(ctx_->succ_in[size_class][prev_succ_], r < list.size())) {
+            if constexpr (!Io::kDecode)
+                while (r < list.size && list.id[r] != want) ++r;
+            const int size_class = cap(static_cast<int>(list.size) - 1, 3);
+            if (io_.bit(ctx_->succ_in[size_class][prev_succ_], r < list.size)) {
                 prev_succ_ = 1;
                 r = code_uint(io_, ctx_->succ_rank[size_class], r);
-                if (r >= list.size()) {
+                if (r >= list.size) {
                     io_.failed = true;
-                    return kNone;
+                    return kNewShape;
                 }
-                return list[r];
+                return list.id[r];
             }
         }
         prev_succ_ = 0;
         std::size_t r = 0;
-        while (r < recent_.size() && recent_[r] != want) ++r;
+        if constexpr (!Io::kDecode) r = want == kNewShape ? kNone : recent_.rank(want);
         const bool known = io_.bit(ctx_->known[prev_known_], r < recent_.size());
         prev_known_ = known;
-        if (!known) return kNone;
+        if (!known) return kNewShape;
         r = code_uint(io_, ctx_->rank[cap(bit_length(prev_rank_), 7)], r);
         if (r >= recent_.size()) {
             io_.failed = true;
-            return kNone;
+            return kNewShape;
         }
         prev_rank_ = r;
-        return recent_[r];
+        return recent_.at(r);
     }
 
-    void note_shape(const Item& it) {
-        std::uint32_t id = find_shape(it);
-        if (id == kNone) {
-            id = static_cast<std::uint32_t>(uniq_.size());
-            uniq_.push_back(it);
-            by_hash_.emplace(it.hash, id);
-        }
-        move_to_front(recent_, id, kShapes);
-        move_to_front(succ_[prev_shape_], id, kSuccessors);
+    void note_shape(std::uint32_t id) {
+        recent_.use(id);
+        succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
     }
 
-    Item item_of(const Segment* s) const {
+    Item item_of(const Segment& s) const {
         Item it;
-        if (!s) {
-            seal(it);
-            return it;
-        }
         it.kind = kSeg;
-        it.delta = s->delta;
+        it.delta = s.delta;
         for (int j = 0; j < phase_count(p_, axes_); ++j) {
-            const auto ab = *phase_arguments(p_, *s, axes_, j);
+            const auto ab = *phase_arguments(p_, s, axes_, j);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
-            if (r.hi - r.lo != 1) it.phase[j] = s->phase[j];
+            if (r.hi - r.lo != 1) it.phase[j] = s.phase[j];
         }
         seal(it);
         return it;
     }
 
     // Segment of an item from the history (valid: it was checked when coded).
-    bool segment_of(const Item& it, Segment& seg) const {
+    void segment_of(const Item& it, Segment& seg) const {
         seg.delta = it.delta;
         for (int j = 0; j < phase_count(p_, axes_); ++j) {
             const auto ab = *phase_arguments(p_, seg, axes_, j);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
             seg.phase[j] = r.hi - r.lo == 1 ? r.lo : it.phase[j];
         }
-        return true;
     }
 
-    bool code_hit(const Item& pred, bool is_hit) {
-        return io_.bit(ctx_->hit[len_bucket(len_)][pred.kind], is_hit);
+    bool code_hit(Kind predicted_kind, bool is_hit) {
+        return io_.bit(ctx_->hit[len_bucket(len_)][predicted_kind], is_hit);
     }
 
-    // History entries: a segment's shape id, kEndId, or kStartTag | chain
-    // index (its delta in starts_). As a match context a chain start is
-    // kStartTag whatever its delta, so a repeated chain is found after its
-    // first segment wherever it starts.
-    static constexpr std::uint32_t kEndId = 0xFFFFFFFFu, kStartTag = 0x80000000u;
-
-    Item item_at(std::uint32_t id) const {
-        Item it;
-        if (id == kEndId) return it;
-        if (id & kStartTag) {
-            it.kind = kStart;
-            it.delta = starts_[id & ~kStartTag];
-            return it;
-        }
-        return uniq_[id];
+    // The history entry the active match predicts at a chain start (`at` ==
+    // kStart) or elsewhere, or kNoPrediction.
+    std::uint32_t predicted(Kind at) const {
+        if (ptr_ < 0) return kNoPrediction;
+        const std::uint32_t id = hist_[static_cast<std::size_t>(ptr_)];
+        if ((at == kStart) != is_start(id)) return kNoPrediction;
+        return id;
     }
 
-    std::optional<Item> predicted(Kind at) const {
-        if (ptr_ < 0) return std::nullopt;
-        const Item it = item_at(hist_[static_cast<std::size_t>(ptr_)]);
-        if ((at == kStart) != (it.kind == kStart)) return std::nullopt;
-        return it;
-    }
-
-    static std::uint32_t context_id(std::uint32_t id) {
-        return id != kEndId && (id & kStartTag) ? kStartTag : id;
-    }
+    static std::uint32_t context_id(std::uint32_t id) { return is_start(id) ? kStartTag : id; }
 
     // Appends an item to the history and moves the match: a verified match
-    // goes on while its predictions come true; otherwise the most recent
-    // earlier position preceded by the same two items (as contexts) is taken.
-    void push(const Item& it) {
-        std::uint32_t id = kEndId;
-        if (it.kind == kSeg) id = prev_shape_;  // set by note_shape()
-        if (it.kind == kStart) {
-            id = kStartTag | static_cast<std::uint32_t>(starts_.size());
-            starts_.push_back(it.delta);
-        }
-        if (ptr_ >= 0 && item_at(hist_[static_cast<std::size_t>(ptr_)]) == it) {
+    // goes on while its predictions come true (`as_predicted`); otherwise
+    // the most recent earlier position preceded by the same two items (as
+    // contexts) is taken.
+    void push(std::uint32_t id, bool as_predicted) {
+        if (ptr_ >= 0 && as_predicted) {
             ++len_;
             ++ptr_;
         } else {
@@ -331,11 +474,8 @@ private:
         const std::size_t n = hist_.size();
         if (n >= 2) {
             const std::uint64_t key = (std::uint64_t{context_id(hist_[n - 2])} << 32) | context_id(hist_[n - 1]);
-            auto [slot, fresh] = table_.try_emplace(key, static_cast<std::uint32_t>(n));
-            if (!fresh) {
-                if (ptr_ < 0) ptr_ = slot->second;
-                slot->second = static_cast<std::uint32_t>(n);
-            }
+            const std::uint32_t before = table_.exchange(key, static_cast<std::uint32_t>(n));
+            if (before != 0 && ptr_ < 0) ptr_ = before;
         }
     }
 
@@ -442,7 +582,7 @@ private:
     Profile p_;
     int axes_;
     std::unique_ptr<Contexts> ctx_;
-    std::unordered_map<std::uint64_t, std::uint32_t> table_;  // context -> next position
+    FlatMap table_;  // context (two history entries) -> next position
     std::vector<std::uint32_t> hist_;
     std::vector<Point> starts_;
     std::int64_t ptr_ = -1;
@@ -452,10 +592,10 @@ private:
     std::int64_t prev_l_ = 1;
     std::array<std::int64_t, kMaxAxes> prev_s_{};
     std::string error_;
-    std::vector<Item> uniq_;                                  // distinct segments seen
-    std::unordered_multimap<std::uint64_t, std::uint32_t> by_hash_;
-    std::vector<std::uint32_t> recent_;                       // most recent first
-    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> succ_;  // by previous segment
+    std::vector<Item> uniq_;                  // distinct segments seen, by shape id
+    std::vector<std::uint32_t> shape_index_;  // open addressing by hash: shape id + 1, 0 empty
+    RecentShapes recent_;
+    std::vector<Successors> succ_;            // by previous shape id + 1 (0: none)
     std::uint32_t prev_shape_ = kNone;
     int prev_succ_ = 0;
     int prev_known_ = 0;

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <new>
 #include <unordered_map>
 
 #include "modeled_block.hpp"
@@ -22,6 +23,9 @@ namespace stepzip::stz {
 namespace {
 
 constexpr int kEndSymbol = 8;
+// Freeman code -> step on each axis.
+constexpr std::int64_t kFreemanDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr std::int64_t kFreemanDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr std::size_t kMinMatch = 12;    // steps hashed to find a match
 constexpr int kMaxStepOrder = 4;  // previous turns in the direction context
 
@@ -47,16 +51,23 @@ struct Counts {
 // addressing, one 64-bit slot per entry (key << 25 | position; a position
 // is at least kMinMatch, so 0 marks an empty slot). Positions are below
 // 2^25 (kMaxBlockSteps + kMaxBlockChains symbols). Same answers as a map.
+//
+// A key is looked up as (first 11 symbols, last symbol): the home slot is
+// the hash of the first 11 times 8 plus the last symbol, so the keys that
+// can follow one history (at most 9) share one 64-byte line, which is
+// prefetched before the symbol is decoded (prefetch()).
 class MatchTable {
 public:
     static constexpr int kPosBits = 25;
-    MatchTable() : slots_(1u << 12, 0) {}
+    MatchTable() { resize(std::size_t{1} << 12); }
 
-    // Stores `pos` under `key`; returns the position stored before (0: none).
-    std::uint32_t exchange(std::uint64_t key, std::uint32_t pos) {
-        if ((used_ + 1) * 2 > slots_.size()) grow();
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t i = index(key, mask);; i = (i + 1) & mask) {
+    // Stores `pos` under key = base * 9 + last; returns the position stored
+    // before (0: none).
+    std::uint32_t exchange(std::uint64_t base, unsigned last, std::uint32_t pos) {
+        if ((used_ + 1) * 2 > size_) grow();
+        const std::uint64_t key = base * 9 + last;
+        const std::size_t mask = size_ - 1;
+        for (std::size_t i = home(base, last, mask);; i = (i + 1) & mask) {
             const std::uint64_t v = slots_[i];
             if (v == 0) {
                 slots_[i] = (key << kPosBits) | pos;
@@ -69,23 +80,47 @@ public:
             }
         }
     }
+    // Brings the line of `base`'s keys into the cache.
+    void prefetch(std::uint64_t base) const {
+        __builtin_prefetch(slots_ + home(base, 0, size_ - 1), 1);
+    }
 
 private:
-    static std::size_t index(std::uint64_t key, std::size_t mask) {
-        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    static std::size_t home(std::uint64_t base, unsigned last, std::size_t mask) {
+        return ((static_cast<std::size_t>((base * 0x9E3779B97F4A7C15ull) >> 24) << 3) + last) & mask;
+    }
+    struct Free {
+        void operator()(void* p) const { std::free(p); }
+    };
+    using Storage = std::unique_ptr<std::uint64_t[], Free>;
+
+    void resize(std::size_t n) {
+        // Zeroed by calloc (fresh pages are not written twice); 64-byte
+        // aligned, so that a home line is one cache line.
+        storage_.reset(static_cast<std::uint64_t*>(std::calloc(n + 8, sizeof(std::uint64_t))));
+        if (!storage_) throw std::bad_alloc();
+        const auto addr = reinterpret_cast<std::uintptr_t>(storage_.get());
+        slots_ = storage_.get() + ((64 - addr % 64) % 64) / sizeof(std::uint64_t);
+        size_ = n;
     }
     void grow() {
-        std::vector<std::uint64_t> old(slots_.size() * 2, 0);
-        old.swap(slots_);
-        const std::size_t mask = slots_.size() - 1;
-        for (std::uint64_t v : old) {
+        Storage old = std::move(storage_);
+        const std::uint64_t* from = slots_;
+        const std::size_t n = size_;
+        resize(n * 2);
+        const std::size_t mask = size_ - 1;
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint64_t v = from[k];
             if (v == 0) continue;
-            std::size_t i = index(v >> kPosBits, mask);
+            const std::uint64_t key = v >> kPosBits;
+            std::size_t i = home(key / 9, static_cast<unsigned>(key % 9), mask);
             while (slots_[i] != 0) i = (i + 1) & mask;
             slots_[i] = v;
         }
     }
-    std::vector<std::uint64_t> slots_;
+    Storage storage_;
+    std::uint64_t* slots_ = nullptr;
+    std::size_t size_ = 0;
     std::size_t used_ = 0;
 };
 
@@ -111,24 +146,58 @@ public:
 
     // Codes the next symbol of a chain: a Freeman code 0..7, or kEndSymbol.
     int next(int want, bool at_start_point, bool first, const Counts& c) {
+        return code_symbol(io_, want, at_start_point, first, c);
+    }
+
+    // Decoder: the symbols of one chain starting at (x, y), up to its END;
+    // moves (x, y) and counts the steps in c.seen_steps, appending them to
+    // `steps` when not null. The range decoder runs on a local copy (kept in
+    // registers). Returns false when the stream is overrun.
+    bool decode_chain(Counts& c, std::int64_t& x, std::int64_t& y, std::vector<Step>* steps)
+        requires Io::kDecode
+    {
+        Io io = io_;
+        const std::int64_t sx = x, sy = y;
+        bool ok = true;
+        for (bool first = true;; first = false) {
+            const int sym = code_symbol(io, 0, x == sx && y == sy, first, c);
+            if (io.rc.overrun()) {
+                ok = false;
+                break;
+            }
+            if (sym == kEndSymbol) break;
+            x += kFreemanDx[sym];
+            y += kFreemanDy[sym];
+            ++c.seen_steps;
+            if (steps) steps->push_back(freeman_to_step(sym));
+        }
+        io_ = io;
+        return ok;
+    }
+
+private:
+    template <class I>
+    [[gnu::always_inline]] int code_symbol(I& io, int want, bool at_start_point, bool first, const Counts& c) {
         int sym;
+        // The table line this symbol will update, fetched while it is decoded.
+        if (hist_.size() + 1 >= kMinMatch) table_.prefetch(next_base());
         if (c.seen_steps == c.nsteps) {
             sym = kEndSymbol;  // forced: no bits
         } else {
             const int pred = ptr_ >= 0 ? hist_[static_cast<std::size_t>(ptr_)] : -1;
             bool hit = false;
-            if (pred >= 0) hit = io_.bit(ctx_->hit[len_bucket(len_)][pred == kEndSymbol], want == pred);
+            if (pred >= 0) hit = io.bit(ctx_->hit[len_bucket(len_)][pred == kEndSymbol], want == pred);
             if (hit) {
                 sym = pred;
             } else {
                 bool end = false;
                 if (pred != kEndSymbol)
-                    end = io_.bit(ctx_->end[(at_start_point ? 1 : 0) + (first ? 2 : 0)], want == kEndSymbol);
+                    end = io.bit(ctx_->end[(at_start_point ? 1 : 0) + (first ? 2 : 0)], want == kEndSymbol);
                 if (end) {
                     sym = kEndSymbol;
                 } else {
                     const int t = static_cast<int>(code_tree(
-                        io_, ctx_->turn[turns_ & mask_], 3, static_cast<unsigned>((want - prev_) & 7)));
+                        io, ctx_->turn[turns_ & mask_], 3, static_cast<unsigned>((want - prev_) & 7)));
                     sym = (prev_ + t) & 7;
                 }
             }
@@ -141,7 +210,13 @@ public:
         return sym;
     }
 
-private:
+    // The first kMinMatch - 1 symbols of the context the next symbol will
+    // complete (base 9), and whether a match is looked up after it.
+    std::uint64_t next_base() const {
+        const std::size_t n = hist_.size();
+        return n >= kMinMatch ? context_ - hist_[n - kMinMatch] * pow9(kMinMatch - 1) : context_;
+    }
+
     void push(int sym) {
         if (ptr_ >= 0 && hist_[static_cast<std::size_t>(ptr_)] == sym) {
             ++len_;
@@ -150,13 +225,14 @@ private:
             len_ = 0;
             ptr_ = -1;
         }
+        const std::uint64_t base = next_base();
         hist_.push_back(static_cast<std::uint8_t>(sym));
         const std::size_t n = hist_.size();
-        if (n > kMinMatch) context_ -= hist_[n - 1 - kMinMatch] * pow9(kMinMatch - 1);
-        context_ = context_ * 9 + static_cast<unsigned>(sym);
+        context_ = base * 9 + static_cast<unsigned>(sym);
         if (n >= kMinMatch) {
             // The most recent earlier position preceded by the same kMinMatch symbols.
-            const std::uint32_t before = table_.exchange(context_, static_cast<std::uint32_t>(n));
+            const std::uint32_t before =
+                table_.exchange(base, static_cast<unsigned>(sym), static_cast<std::uint32_t>(n));
             if (before != 0 && ptr_ < 0) ptr_ = before;
         }
     }
@@ -193,15 +269,18 @@ std::string write_step_model_order(const Block& block, int order) {
         Point d{};
         for (int a = 0; a < 2; ++a) d[a] = chain.start[a] - ref[a];
         coder.start(d);
-        Point pos = chain.start;
+        std::int64_t x = chain.start[0], y = chain.start[1];
         for (std::size_t k = 0;; ++k) {
             const int want = k < chain.steps.size() ? step_to_freeman(chain.steps[k]) : kEndSymbol;
             if (want < 0) return {};
-            if (coder.next(want, pos == chain.start, k == 0, c) == kEndSymbol) break;
-            apply_step(pos, chain.steps[k], 2);
+            if (coder.next(want, x == chain.start[0] && y == chain.start[1], k == 0, c) == kEndSymbol) break;
+            x += kFreemanDx[want];
+            y += kFreemanDy[want];
             ++c.seen_steps;
         }
-        ref = pos;
+        ref = Point{};
+        ref[0] = x;
+        ref[1] = y;
     }
     out += io.rc.finish();
     return out;
@@ -265,17 +344,12 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
                 return fail("chain start out of range");
             chain.start[a] = ref[a] + d[a];
         }
-        Point pos = chain.start;
-        for (bool first = true;; first = false) {
-            const int sym = coder.next(0, pos == chain.start, first, c);
-            if (io.failed || io.rc.overrun()) return fail("bad step");
-            if (sym == kEndSymbol) break;
-            const Step s = freeman_to_step(sym);
-            apply_step(pos, s, 2);
-            ++c.seen_steps;
-            if (expand) chain.steps.push_back(s);
-        }
-        ref = pos;
+        std::int64_t x = chain.start[0], y = chain.start[1];
+        if (!coder.decode_chain(c, x, y, expand ? &chain.steps : nullptr) || io.failed)
+            return fail("bad step");
+        ref = Point{};
+        ref[0] = x;
+        ref[1] = y;
         if (expand) out.chains.push_back(std::move(chain));
     }
     if (c.seen_steps != c.nsteps) return fail("declared step count does not match");
