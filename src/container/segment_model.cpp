@@ -654,14 +654,18 @@ std::string write_segment_model(const Block& block, Profile p,
     put_varint(out, c.nchains);
     put_varint(out, c.nsegments);
     put_varint(out, c.nsteps);
-    // Grid of the chain starts: the gcd of every start delta.
+    // Grid of the chain starts: the gcd of every start delta. A chain's end
+    // is its start plus its segments' totals (the cut is exact).
     std::uint64_t grid = 0;
     {
         Point ref{};
-        for (const Chain& chain : block.chains) {
+        for (std::size_t i = 0; i < block.chains.size(); ++i) {
+            const Chain& chain = block.chains[i];
             for (int a = 0; a < block.axes; ++a)
                 grid = std::gcd(grid, static_cast<std::uint64_t>(std::llabs(chain.start[a] - ref[a])));
-            ref = chain.end();
+            ref = chain.start;
+            for (const Segment& s : segs[i])
+                for (int a = 0; a < block.axes; ++a) ref[a] += s.delta[a];
         }
         if (grid == 0 || grid > (std::uint64_t{1} << 62)) grid = 1;
     }
