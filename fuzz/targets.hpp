@@ -121,20 +121,6 @@ inline Result<std::vector<Block>> read_blocks(InputFormat format, std::string_vi
     return blocks;
 }
 
-/// Known open bug (tests/regressions/open/): a chain starting beyond about
-/// 2^40 makes compress fail its round-trip proof ("bad chain start"), though
-/// the readers accept coordinates up to 2^62. Compress refuses (no wrong
-/// output), so the fuzzers let exactly this failure pass until it is fixed;
-/// delete this function then.
-inline bool known_far_chain_start_issue(const std::vector<Block>& blocks, const Error& e) {
-    if (e.code != Errc::mismatch || e.message.find("bad chain start") == std::string::npos) return false;
-    for (const Block& b : blocks)
-        for (const Chain& c : b.chains)
-            for (int i = 0; i < c.axes; ++i)
-                if (c.start[i] > (std::int64_t{1} << 39) || c.start[i] < -(std::int64_t{1} << 39)) return true;
-    return false;
-}
-
 /// A text parser target: the first byte picks the block size (bits 0-2) and
 /// whether to compress (bits 3-5 zero), the second the number of feed()
 /// chunk sizes that follow (0-2); the rest is the file. The reader must accept or
@@ -189,7 +175,6 @@ inline std::string chain_file_target(InputFormat format, const std::uint8_t* dat
     opt.block_steps = bounded_block_steps(block_steps, total_steps);
     opt.source = "fuzz";
     auto z = compress(text, opt);
-    if (!z && known_far_chain_start_issue(*whole, z.error())) return {};
     if (!z) return "compress fails on input the reader accepts: " + describe(z.error());
     auto back = decompress(*z);
     if (!back) return "decompress fails on a fresh frame: " + describe(back.error());

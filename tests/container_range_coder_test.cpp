@@ -5,6 +5,7 @@
 // past its buffer and is always told apart from the original.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -89,11 +90,16 @@ TEST(RangeCoder, ProbabilitiesStayInsideTheirRange) {
 
 TEST(RangeCoder, ExpGolombValuesRoundTrip) {
     std::mt19937_64 rng(5);
-    std::vector<std::uint64_t> u = {0, 1, 2, 3, 7, 8, (std::uint64_t{1} << 40) - 2};
-    std::vector<std::int64_t> s = {0, 1, -1, 63, -64, (std::int64_t{1} << 39) - 1, -(std::int64_t{1} << 39)};
+    // the whole 64-bit range, both ends included
+    constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+    constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+    std::vector<std::uint64_t> u = {0, 1, 2, 3, 7, 8, (std::uint64_t{1} << 40) - 2,
+                                    std::uint64_t{1} << 63, kMax - 1, kMax};
+    std::vector<std::int64_t> s = {0, 1, -1, 63, -64, (std::int64_t{1} << 39) - 1, -(std::int64_t{1} << 39),
+                                   kMin, kMin + 1, std::numeric_limits<std::int64_t>::max()};
     for (int i = 0; i < 3000; ++i) {
-        u.push_back(rng() >> (24 + rng() % 40));
-        s.push_back(static_cast<std::int64_t>(rng() >> (25 + rng() % 39)) * (rng() % 2 ? 1 : -1));
+        u.push_back(rng() >> (rng() % 64));
+        s.push_back(static_cast<std::int64_t>(rng() >> (1 + rng() % 63)) * (rng() % 2 ? 1 : -1));
     }
     EncIo enc;
     UIntModel mu[3], ms[3];
@@ -113,7 +119,8 @@ TEST(RangeCoder, ExpGolombValuesRoundTrip) {
 }
 
 TEST(RangeCoder, OverlongExpGolombPrefixFails) {
-    // Bits of all ones decode as an endless unary prefix: the decoder stops.
+    // Bits of all ones decode as an endless unary prefix: the decoder stops
+    // after 64 ones (the longest prefix a 64-bit value has).
     const std::string ones(64, '\xFF');
     DecIo dec(ones);
     UIntModel m;

@@ -163,11 +163,10 @@ void expect_round_trip(InputFormat f, const std::string& text, const char* what)
     }
 }
 
-// Disabled until the container codes every chain start the readers accept:
-// coordinates go up to +-2^62, so the jump from one chain to the next reaches
-// 2^63 + steps. Today compress fails its round-trip proof ("bad chain start")
-// for a start beyond about 2^40 already (tests/regressions/open/).
-TEST(HardeningLimits, DISABLED_ChainsAtOppositeCoordinateExtremesRoundTrip) {
+// Every chain start the readers accept is coded: coordinates go up to
+// +-2^62, so the jump from one chain to the next reaches 2^63 + steps (coded
+// as a wrapping difference; tests/regressions/*/chain-start-beyond-2to40).
+TEST(HardeningLimits, ChainsAtOppositeCoordinateExtremesRoundTrip) {
     // The jump between two chain starts is up to 2^63 + steps: more than an
     // int64 difference holds.
     const std::string max = std::to_string(k62), min = std::to_string(-k62);

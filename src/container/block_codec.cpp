@@ -121,7 +121,7 @@ std::string write_chain_payload(const Block& block, Profile p,
     int prev_octant = 0;
     for (std::size_t c = 0; c < block.chains.size(); ++c) {
         const Chain& chain = block.chains[c];
-        for (int i = 0; i < axes; ++i) put_svarint(*s[kHeads], chain.start[i] - ref[i]);
+        for (int i = 0; i < axes; ++i) put_svarint(*s[kHeads], wrap_sub(chain.start[i], ref[i]));
         put_varint(*s[kHeads], segs[c].size());
         for (const Segment& seg : segs[c]) {
             const Direction dir = direction_of(seg.delta, axes);
@@ -200,11 +200,9 @@ Result<void> read_chain_payload(std::string_view payload, Profile p, int axes, b
         for (int i = 0; i < axes; ++i) {
             std::int64_t d;
             if (!cur[kHeads]->svarint(d)) return short_stream(kHeads);
-            if (d > (std::int64_t{1} << 62) || d < -(std::int64_t{1} << 62) ||
-                (ref[i] > 0 && d > std::numeric_limits<std::int64_t>::max() - ref[i]) ||
-                (ref[i] < 0 && d < std::numeric_limits<std::int64_t>::min() - ref[i]))
+            chain.start[i] = wrap_add(ref[i], d);
+            if (!start_in_range(chain.start[i]))
                 return fail(Errc::corrupt, at(kHeads), "chain start out of range");
-            chain.start[i] = ref[i] + d;
         }
         std::uint64_t nseg;
         if (!cur[kHeads]->varint(nseg)) return short_stream(kHeads);

@@ -39,6 +39,25 @@ inline std::int64_t unzigzag(std::uint64_t v) {
 
 inline void put_svarint(std::string& out, std::int64_t v) { put_varint(out, zigzag(v)); }
 
+/// a - b and a + b modulo 2^64. Chain starts are coded as the wrapping
+/// difference from a reference point, so any two coordinates have one and the
+/// decoder's wrapping sum gives the start back exactly.
+inline std::int64_t wrap_sub(std::int64_t a, std::int64_t b) {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
+}
+inline std::int64_t wrap_add(std::int64_t a, std::int64_t b) {
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+}
+/// |v| without overflow (|INT64_MIN| = 2^63).
+inline std::uint64_t magnitude(std::int64_t v) {
+    return v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+}
+/// Largest |coordinate| of a decoded chain start: chain files hold
+/// coordinates within +-2^62, and a chain piece that continues another starts
+/// where that one ended, which is less than 2^61 steps further.
+inline constexpr std::int64_t kMaxStartCoordinate = (std::int64_t{1} << 62) + (std::int64_t{1} << 61);
+inline bool start_in_range(std::int64_t v) { return v >= -kMaxStartCoordinate && v <= kMaxStartCoordinate; }
+
 /// Bounds-checked cursor over a byte range. Every read reports failure instead
 /// of reading past the end; `pos()` is the offset of the next byte.
 class Cursor {

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -188,12 +189,12 @@ struct DecIo {
 /// Bit length of v (0 for 0).
 inline int bit_length(std::uint64_t v) noexcept { return static_cast<int>(std::bit_width(v)); }
 
-/// Adaptive Exp-Golomb code of an unsigned value v < 2^kUIntMaxBits - 1:
+/// Adaptive Exp-Golomb code of any unsigned 64-bit value v:
 /// k = bit_length(v + 1) - 1 in unary (k ones then a zero, the i-th unary bit
 /// in context unary[min(i, 23)]), then the k bits of v + 1 below its top
 /// bit, high to low, the j-th (j = 0 first) in context mant[min(k, 23)][min(j, 7)].
 /// A decoder reading more than kUIntMaxBits unary ones fails.
-inline constexpr int kUIntMaxBits = 40;
+inline constexpr int kUIntMaxBits = 64;
 struct UIntModel {
     Prob unary[24];
     Prob mant[24][8];
@@ -201,8 +202,10 @@ struct UIntModel {
 
 template <class Io>
 std::uint64_t code_uint(Io& io, UIntModel& m, std::uint64_t v) {
+    // w = v + 1 is 2^64 for v = 2^64 - 1: then k = 64 and the bits below
+    // w's top bit are all zero, as the wrapped w = 0 gives them.
     const std::uint64_t w = v + 1;
-    const int k = Io::kDecode ? 0 : bit_length(w) - 1;
+    const int k = Io::kDecode ? 0 : (w == 0 ? 64 : bit_length(w) - 1);
     int got = 0;
     for (;;) {
         const int more = io.bit(m.unary[got < 23 ? got : 23], got < k);
@@ -212,11 +215,15 @@ std::uint64_t code_uint(Io& io, UIntModel& m, std::uint64_t v) {
             return 0;
         }
     }
-    std::uint64_t r = 1;
+    std::uint64_t r = 1;  // with got == 64 the leading 1 shifts out: r keeps the low bits
     Prob* row = m.mant[got < 23 ? got : 23];
     for (int j = 0; j < got; ++j) {
         const int b = io.bit(row[j < 7 ? j : 7], static_cast<int>((w >> (got - 1 - j)) & 1u));
         r = (r << 1) | static_cast<unsigned>(b);
+    }
+    if (got == 64) {  // w = 2^64 + r: only r == 0 is a 64-bit value
+        if (r != 0) io.failed = true;
+        return std::numeric_limits<std::uint64_t>::max();
     }
     return r - 1;
 }

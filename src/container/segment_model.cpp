@@ -257,14 +257,12 @@ public:
             for (int i = 0; i < axes_; ++i) {
                 // Context: size class of the axis coded before (axis 0: of the
                 // previous chain's axis-0 value).
-                const std::uint64_t before = static_cast<std::uint64_t>(std::llabs(i == 0 ? prev_start0_ : last_v));
+                const std::uint64_t before = stz::magnitude(i == 0 ? prev_start0_ : last_v);
                 const std::int64_t v = code_sint(io_, ctx_->start[i][cap(bit_length(before), 7)], want[i] / grid_);
                 last_v = v;
                 if (i == 0) prev_start0_ = v;
-                if (v > (std::int64_t{1} << 62) / grid_ || v < -(std::int64_t{1} << 62) / grid_)
-                    io_.failed = true;
-                else
-                    delta[i] = v * grid_;
+                // wrapping: the start is checked once it is rebuilt
+                delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) * static_cast<std::uint64_t>(grid_));
             }
         }
         prev_shape_ = kNone;
@@ -662,10 +660,10 @@ std::string write_segment_model(const Block& block, Profile p,
         for (std::size_t i = 0; i < block.chains.size(); ++i) {
             const Chain& chain = block.chains[i];
             for (int a = 0; a < block.axes; ++a)
-                grid = std::gcd(grid, static_cast<std::uint64_t>(std::llabs(chain.start[a] - ref[a])));
+                grid = std::gcd(grid, stz::magnitude(stz::wrap_sub(chain.start[a], ref[a])));
             ref = chain.start;
             for (const Segment& s : segs[i])
-                for (int a = 0; a < block.axes; ++a) ref[a] += s.delta[a];
+                for (int a = 0; a < block.axes; ++a) ref[a] = stz::wrap_add(ref[a], s.delta[a]);
         }
         if (grid == 0 || grid > (std::uint64_t{1} << 62)) grid = 1;
     }
@@ -678,7 +676,7 @@ std::string write_segment_model(const Block& block, Profile p,
     for (std::size_t i = 0; i < block.chains.size(); ++i) {
         const Chain& chain = block.chains[i];
         Point d{};
-        for (int a = 0; a < block.axes; ++a) d[a] = chain.start[a] - ref[a];
+        for (int a = 0; a < block.axes; ++a) d[a] = stz::wrap_sub(chain.start[a], ref[a]);
         coder.start(d);
         Point pos = chain.start;
         Segment got;
@@ -736,10 +734,8 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
         const Point d = coder.start(Point{});
         if (io.failed || io.rc.overrun()) return fail("bad chain start");
         for (int a = 0; a < axes; ++a) {
-            if ((ref[a] > 0 && d[a] > std::numeric_limits<std::int64_t>::max() - ref[a]) ||
-                (ref[a] < 0 && d[a] < std::numeric_limits<std::int64_t>::min() - ref[a]))
-                return fail("chain start out of range");
-            chain.start[a] = ref[a] + d[a];
+            chain.start[a] = stz::wrap_add(ref[a], d[a]);
+            if (!stz::start_in_range(chain.start[a])) return fail("chain start out of range");
         }
         Point pos = chain.start;
         Segment seg;

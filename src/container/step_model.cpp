@@ -138,8 +138,7 @@ public:
     Point start(const Point& want) {
         Point d{};
         for (int i = 0; i < 2; ++i) {
-            d[i] = code_sint(io_, ctx_->start[i], want[i]);
-            if (d[i] > (std::int64_t{1} << 62) || d[i] < -(std::int64_t{1} << 62)) io_.failed = true;
+            d[i] = code_sint(io_, ctx_->start[i], want[i]);  // the rebuilt start is range-checked
         }
         return d;
     }
@@ -267,7 +266,7 @@ std::string write_step_model_order(const Block& block, int order) {
     Point ref{};
     for (const Chain& chain : block.chains) {
         Point d{};
-        for (int a = 0; a < 2; ++a) d[a] = chain.start[a] - ref[a];
+        for (int a = 0; a < 2; ++a) d[a] = stz::wrap_sub(chain.start[a], ref[a]);
         coder.start(d);
         std::int64_t x = chain.start[0], y = chain.start[1];
         for (std::size_t k = 0;; ++k) {
@@ -339,10 +338,8 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
         const Point d = coder.start(Point{});
         if (io.failed || io.rc.overrun()) return fail("bad chain start");
         for (int a = 0; a < 2; ++a) {
-            if ((ref[a] > 0 && d[a] > std::numeric_limits<std::int64_t>::max() - ref[a]) ||
-                (ref[a] < 0 && d[a] < std::numeric_limits<std::int64_t>::min() - ref[a]))
-                return fail("chain start out of range");
-            chain.start[a] = ref[a] + d[a];
+            chain.start[a] = stz::wrap_add(ref[a], d[a]);
+            if (!stz::start_in_range(chain.start[a])) return fail("chain start out of range");
         }
         std::int64_t x = chain.start[0], y = chain.start[1];
         if (!coder.decode_chain(c, x, y, expand ? &chain.steps : nullptr) || io.failed)
