@@ -122,8 +122,13 @@ int report(const Error& error) {
 }
 
 int usage_error(std::string_view message) {
-    std::fprintf(stderr, "stepzip: %.*s (try 'stepzip COMMAND --help')\n",
-                 static_cast<int>(message.size()), message.data());
+    // messages start with the subcommand's name: "compress: ..."
+    const std::size_t colon = message.find(':');
+    const std::string_view command =
+        colon == std::string_view::npos ? std::string_view("COMMAND") : message.substr(0, colon);
+    std::fprintf(stderr, "stepzip: %.*s (try 'stepzip %.*s --help')\n",
+                 static_cast<int>(message.size()), message.data(),
+                 static_cast<int>(command.size()), command.data());
     return 2;
 }
 

@@ -31,8 +31,9 @@ bool is_terminal(std::FILE* stream) noexcept;
 
 /// Prints "stepzip: <message>" on stderr; returns 1 (the error exit code).
 int report(const Error& error);
-/// Prints "stepzip: <message>" and a hint to use --help on stderr; returns 2
-/// (the usage-error exit code).
+/// Prints "stepzip: <message>" and a hint to use the --help of the command
+/// that <message> starts with ("compress: ...") on stderr; returns 2 (the
+/// usage-error exit code).
 int usage_error(std::string_view message);
 /// Prints "stepzip: <message>" on stderr (a note or warning; no exit code).
 void note(std::string_view message);
