@@ -34,27 +34,6 @@ bool default_exact(Profile p, std::span<const Step> run, int axes, std::vector<S
     return scratch.size() == run.size() && std::equal(scratch.begin(), scratch.end(), run.begin());
 }
 
-// Longest exact segment at steps[0], read run by run (as the greedy
-// segmenter reads it).
-std::size_t longest_exact(detail::RunSegment& rec, std::span<const Step> steps) {
-    rec.reset();
-    const std::size_t n = steps.size();
-    std::int64_t best = 0;
-    std::size_t pos = 0;
-    while (pos < n) {
-        const Step s = steps[pos];
-        std::size_t e = pos + 1;
-        while (e < n && steps[e] == s) ++e;
-        const auto k = static_cast<std::int64_t>(e - pos);
-        const auto r = rec.probe(s, k);
-        if (r.lo <= r.hi) best = rec.length() + r.hi;
-        if (r.alive < k) break;
-        rec.commit(s, k);
-        pos = e;
-    }
-    return static_cast<std::size_t>(best);
-}
-
 // Two axes: the window's letters (ticks where each axis moves) and the
 // test whether a prefix is the profile's default-phase pattern.
 class TwoAxisWindow {
@@ -114,7 +93,7 @@ bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& 
     TwoAxisWindow win(p);
     std::size_t i = 0;
     while (i < steps.size()) {
-        const std::size_t valid = longest_exact(rec, steps.subspan(i));
+        const auto valid = static_cast<std::size_t>(detail::longest_exact_prefix(rec, steps.subspan(i)));
         if (valid == 0) return false;
         win.load(steps.subspan(i, valid));
         Segment seg;

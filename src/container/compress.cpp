@@ -13,6 +13,7 @@
 #include "block_codec.hpp"
 #include "modeled_block.hpp"
 #include "bytes.hpp"
+#include "memory_io.hpp"
 #include "stepzip/container.hpp"
 
 namespace stepzip {
@@ -537,19 +538,8 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
 }
 
 Result<std::string> compress(std::string_view input, const CompressOptions& opt) {
-    std::size_t pos = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, input.size() - pos);
-        std::copy_n(input.data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
     std::string out;
-    WriteFn sink = [&](std::string_view b) -> Result<void> {
-        out += b;
-        return {};
-    };
-    auto r = compress_stream(in, sink, opt);
+    auto r = compress_stream(stz::memory_reader(input), stz::string_writer(out), opt);
     if (!r) return std::move(r).error();
     return out;
 }

@@ -9,6 +9,7 @@
 #include "block_codec.hpp"
 #include "modeled_block.hpp"
 #include "bytes.hpp"
+#include "memory_io.hpp"
 #include "stepzip/container.hpp"
 
 namespace stepzip {
@@ -232,19 +233,8 @@ Result<FrameInfo> inspect_stream(const ReadFn& in, std::string_view source) {
 }
 
 Result<std::string> decompress(std::string_view frame, std::string_view source) {
-    std::size_t pos = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, frame.size() - pos);
-        std::copy_n(frame.data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
     std::string out;
-    WriteFn sink = [&](std::string_view b) -> Result<void> {
-        out += b;
-        return {};
-    };
-    auto r = decompress_stream(in, sink, source);
+    auto r = decompress_stream(stz::memory_reader(frame), stz::string_writer(out), source);
     if (!r) return std::move(r).error();
     return out;
 }

@@ -50,27 +50,6 @@ bool patent_prefix_exact(std::span<const Step> steps, std::int64_t m, std::int64
 
 namespace {
 
-// Longest exact segment at steps[0] under a linear profile, read run by run
-// (see run_word.hpp); `rec` is scratch state reused across calls.
-std::int64_t longest_linear(detail::RunSegment& rec, std::span<const Step> steps) {
-    rec.reset();
-    const std::size_t n = steps.size();
-    std::int64_t best = 1;
-    std::size_t pos = 0;
-    while (pos < n) {
-        const Step s = steps[pos];
-        std::size_t e = pos + 1;
-        while (e < n && steps[e] == s) ++e;
-        const auto k = static_cast<std::int64_t>(e - pos);
-        const auto r = rec.probe(s, k);
-        if (r.lo <= r.hi) best = rec.length() + r.hi;
-        if (r.alive < k) break;
-        rec.commit(s, k);
-        pos = e;
-    }
-    return best;
-}
-
 std::int64_t longest_patent(std::span<const Step> steps) {
     const std::int64_t reach = patent_reach(steps, kPatentMaxSegment);
     std::vector<std::int64_t> xs(static_cast<std::size_t>(reach) + 1, 0);
@@ -88,7 +67,7 @@ std::int64_t GreedySegmenter::longest(std::span<const Step> steps) const {
     if (profile_ == Profile::patent) return longest_patent(steps);
     if (axes_ == 2) return detail::TwoAxisGreedy(profile_).longest(steps);
     detail::RunSegment rec(profile_, axes_);
-    return longest_linear(rec, steps);
+    return detail::longest_exact_prefix(rec, steps);
 }
 
 void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out) const {
@@ -111,7 +90,7 @@ void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out
     std::size_t pos = 0;
     while (pos < steps.size()) {
         const auto rest = steps.subspan(pos);
-        auto m = static_cast<std::size_t>(patent ? longest_patent(rest) : longest_linear(rec, rest));
+        auto m = static_cast<std::size_t>(patent ? longest_patent(rest) : detail::longest_exact_prefix(rec, rest));
         auto seg = fit_segment(profile_, rest.first(m), axes_);
         assert(seg.has_value());
         // Never reached when the recognizer is right (the tests check it):

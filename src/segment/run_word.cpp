@@ -227,4 +227,23 @@ void RunSegment::commit(Step s, std::int64_t k) {
     length_ += k;
 }
 
+std::int64_t longest_exact_prefix(RunSegment& rec, std::span<const Step> steps) {
+    rec.reset();
+    const std::size_t n = steps.size();
+    std::int64_t best = 0;
+    std::size_t pos = 0;
+    while (pos < n) {
+        const Step s = steps[pos];
+        std::size_t e = pos + 1;
+        while (e < n && steps[e] == s) ++e;
+        const auto k = static_cast<std::int64_t>(e - pos);
+        const auto r = rec.probe(s, k);
+        if (r.lo <= r.hi) best = rec.length() + r.hi;
+        if (r.alive < k) break;
+        rec.commit(s, k);
+        pos = e;
+    }
+    return best;
+}
+
 }  // namespace stepzip::detail

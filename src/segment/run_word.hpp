@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "stepzip/profile.hpp"
@@ -95,5 +96,11 @@ private:
     unsigned always_ = 0;  // axes that moved on every tick (8-connected)
     RunWord words_[kMaxAxes];
 };
+
+/// Length of the longest exact segment at steps[0] under `rec`'s linear
+/// profile, read run by run; 0 for no steps. `rec` is scratch state, reset
+/// here, reused across calls. Complexity: O(runs read), reading stops where
+/// the word can no longer be extended.
+std::int64_t longest_exact_prefix(RunSegment& rec, std::span<const Step> steps);
 
 }  // namespace stepzip::detail
