@@ -19,8 +19,9 @@ wide floor_div(wide a, wide b) {  // b > 0
 }
 wide ceil_div(wide a, wide b) { return -floor_div(-a, b); }
 
-// Words of up to kShortLetters letters are decided by a table made at
-// compile time. A word with totals (A, B) is exact iff the values
+// Words of up to kShortLetters letters are decided by a table made once, on
+// first use (about 10^6 simple operations: too many for some compilers'
+// constant evaluation). A word with totals (A, B) is exact iff the values
 // s = A*q - B*p over its positions (p, q), end point included, span at most
 // A + B - 1 (with F0 = -(min s + B), a 0 at s_k >= min + B and a 1 below
 // it reproduce the word; conversely every s lies in [-F0 - B, -F0 + A)).
@@ -35,7 +36,7 @@ struct ShortWords {
     std::uint16_t entry[1u << kShortLetters];
 };
 
-constexpr ShortWords make_short_words() {
+ShortWords make_short_words() {
     ShortWords t{};
     constexpr int n = kShortLetters;
     for (unsigned w = 0; w < (1u << n); ++w) {
@@ -67,7 +68,10 @@ constexpr ShortWords make_short_words() {
     return t;
 }
 
-constexpr ShortWords kShortWords = make_short_words();
+const ShortWords& short_words() {
+    static const ShortWords table = make_short_words();  // thread-safe initialization
+    return table;
+}
 
 // x-step of eval4 / axis step of the 8-connected profiles -> letter 0.
 inline int letter_of(Step s, bool eight) {
@@ -288,7 +292,7 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
             if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
             bits |= static_cast<unsigned>(letter) << i;
         }
-        const unsigned e = kShortWords.entry[bits];
+        const unsigned e = short_words().entry[bits];
         if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
             const unsigned valid = e & ((2u << i) - 1u) & ~1u;
             const int m = 31 - __builtin_clz(valid);  // bit 1 is always set

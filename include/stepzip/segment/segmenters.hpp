@@ -35,7 +35,7 @@ inline constexpr std::int64_t kPatentOptimalWindow = 64;
 /// Linear profiles: SegmentRecognizer runs until the word stops being a
 /// digital straight segment (validity is not monotone in the length, so it
 /// keeps going past invalid prefixes), then cuts at the longest valid prefix.
-/// Two axes: segments of up to 12 steps are decided by a compile-time table
+/// Two axes: segments of up to 12 steps are decided by a table made once
 /// of exact words, longer ones run by run with multiplications only.
 /// Complexity: O(log h) per run read; a step is read again only when it lies
 /// past the cut but inside the broken DSS (about one period of the line).
