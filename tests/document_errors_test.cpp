@@ -58,6 +58,8 @@ TEST(FreemanErrors, NameLineAndColumn) {
         {"0 0 -1\n", Errc::syntax, "t.txt:1:5: "},
         {"9999999999999999999 0 0\n", Errc::overflow, "t.txt:1:1: "},
         {"0 -4611686018427387905 0\n", Errc::overflow, "t.txt:1:3: "},
+        // 10 x a 19-digit value wraps past 2^64 to below 2^62 if checked late
+        {"40000000000000001204 0 0\n", Errc::overflow, "t.txt:1:1: "},
         {"+ 0 0\n", Errc::syntax, "t.txt:1:2: "},
         {"0 0 0\n1", Errc::syntax, "t.txt:2:2: "},
         {"0 0 0\r\n1 1 1\r\n2 2 2a\r\n", Errc::syntax, "t.txt:3:6: "},
@@ -94,6 +96,7 @@ TEST(PointsErrors, NameLineAndColumn) {
         {"0\x00 0"s, Errc::syntax, "t.txt:1:2: "},
         {"x y\n0 0\n", Errc::syntax, "t.txt:1:1: "},
         {"0 0\n1 99999999999999999999\n", Errc::overflow, "t.txt:2:3: "},
+        {"40000000000000001204\t5 5\n", Errc::overflow, "t.txt:1:1: "},
         {std::string(70000, ' ') + "0 0\n", Errc::limit, "t.txt:1:65537: "},
         {"# fine\n0 0\n# \x1b[31m\n", Errc::syntax, "t.txt:3:3: "},
     };

@@ -109,8 +109,13 @@ struct NumberAccum {
     void digit(unsigned d) {
         ++digits;
         if (too_big) return;
+        constexpr auto kLimit = static_cast<std::uint64_t>(kCoordLimit);
+        if (magnitude > kLimit / 10) {  // checked before multiplying: 10 * magnitude could wrap
+            too_big = true;
+            return;
+        }
         magnitude = magnitude * 10 + d;
-        if (magnitude > static_cast<std::uint64_t>(kCoordLimit)) too_big = true;
+        if (magnitude > kLimit) too_big = true;
     }
     std::int64_t value() const {
         const auto m = static_cast<std::int64_t>(magnitude);
