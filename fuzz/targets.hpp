@@ -29,20 +29,6 @@ namespace stepzip::fuzz {
 inline constexpr std::string_view kTargets[] = {"container", "freeman", "points",
                                                 "steps",     "vectors", "roundtrip"};
 
-/// Errors a decoder may report for a damaged or hostile frame.
-inline bool decoder_error(Errc e) {
-    switch (e) {
-        case Errc::bad_magic:
-        case Errc::bad_version:
-        case Errc::corrupt:
-        case Errc::truncated:
-        case Errc::reserved_bits:
-        case Errc::checksum:
-        case Errc::limit: return true;
-        default: return false;
-    }
-}
-
 /// Errors a chain-file or vector reader may report for bad text.
 inline bool reader_error(Errc e) {
     switch (e) {
@@ -66,7 +52,7 @@ inline std::string container_target(const std::uint8_t* data, std::size_t size) 
     const std::string_view frame(reinterpret_cast<const char*>(data), size);
     auto out = decompress(frame, "fuzz");
     if (!out) {
-        if (!decoder_error(out.error().code)) return "decompress: undocumented error " + describe(out.error());
+        if (!is_frame_error(out.error().code)) return "decompress: undocumented error " + describe(out.error());
         if (out.error().message.rfind("fuzz", 0) != 0)
             return "decompress: message does not name the source: " + out.error().message;
         return {};

@@ -122,6 +122,23 @@ Result<FrameInfo> decompress_stream(const ReadFn& in, const WriteFn& out,
 /// Errors: as decompress_stream().
 Result<FrameInfo> inspect_stream(const ReadFn& in, std::string_view source = "<input>");
 
+/// True for the errors a decoder reports for a damaged or hostile frame
+/// (docs/FORMAT.md): bad_magic, bad_version, reserved_bits, truncated,
+/// corrupt, limit, checksum. Errors of the reading or writing ends (io) and
+/// of the caller are not among them.
+constexpr bool is_frame_error(Errc e) noexcept {
+    switch (e) {
+        case Errc::bad_magic:
+        case Errc::bad_version:
+        case Errc::corrupt:
+        case Errc::truncated:
+        case Errc::reserved_bits:
+        case Errc::checksum:
+        case Errc::limit: return true;
+        default: return false;
+    }
+}
+
 /// In-memory conveniences over the streaming calls.
 Result<std::string> compress(std::string_view input, const CompressOptions& opt = {});
 Result<std::string> decompress(std::string_view frame, std::string_view source = "<input>");
