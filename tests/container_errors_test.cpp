@@ -16,6 +16,8 @@
 namespace stepzip {
 namespace {
 
+using stz::Cursor;
+
 // A small frame with a chain block (plotter-like vectors, eval8).
 std::string small_frame() {
     CompressOptions opt;
@@ -56,12 +58,21 @@ TEST(ContainerErrors, EverySingleBitFlipDecodesExactlyOrIsRejected) {
                     << "byte " << i << " bit " << bit << ": " << r.error().message;
             }
         }
-    // Only the informational segmenter field may change without effect.
-    EXPECT_LE(accepted, 2);
+    // The header check covers the informational segmenter field too.
+    EXPECT_EQ(accepted, 0);
+}
+
+// `frame` with header byte `i` set to `v` and the header check made valid
+// again (docs/FORMAT.md 1.1), so that the field itself is what is checked.
+std::string with_header_byte(std::string frame, std::size_t i, unsigned v) {
+    frame[i] = static_cast<char>(v);
+    frame[7] = static_cast<char>((stz::hash64(std::string_view(frame).substr(0, 7)) >> 8) & 0xFF);
+    return frame;
 }
 
 TEST(ContainerErrors, HeaderFieldsAreChecked) {
     const std::string frame = small_frame();
+    ASSERT_EQ(frame[4], 2);
     auto code = [](std::string f) {
         auto r = decompress(f);
         return r.ok() ? Errc::ok : r.error().code;
@@ -70,19 +81,57 @@ TEST(ContainerErrors, HeaderFieldsAreChecked) {
     f[0] = 'S';
     EXPECT_EQ(code(f), Errc::bad_magic);
     f = frame;
-    f[4] = 2;
+    f[4] = 3;
     EXPECT_EQ(code(f), Errc::bad_version);
     f = frame;
-    f[9] = 1;
-    EXPECT_EQ(code(f), Errc::reserved_bits);
+    f[4] = 0;
+    EXPECT_EQ(code(f), Errc::bad_version);
+    // Any other header byte changed: the header check fails.
+    for (std::size_t i = 5; i < stz::kFrameHeaderSize; ++i) {
+        f = frame;
+        f[i] = static_cast<char>(f[i] ^ 0x10);
+        EXPECT_EQ(code(f), Errc::checksum) << "byte " << i;
+    }
+    const auto b5 = static_cast<unsigned char>(frame[5]), b6 = static_cast<unsigned char>(frame[6]);
+    EXPECT_EQ(code(with_header_byte(frame, 5, b5 | 0x80)), Errc::reserved_bits);
+    EXPECT_EQ(code(with_header_byte(frame, 5, (b5 & ~7u) | 6)), Errc::corrupt);          // profile 6
+    EXPECT_EQ(code(with_header_byte(frame, 5, (b5 & ~0x18u) | 0x18)), Errc::corrupt);    // input format 3
+    EXPECT_EQ(code(with_header_byte(frame, 5, b5 | 0x60)), Errc::corrupt);               // segmenter 3
+    EXPECT_EQ(code(with_header_byte(frame, 6, (b6 & ~7u) | 1)), Errc::corrupt);          // 1 axis
+    EXPECT_EQ(code(with_header_byte(frame, 6, (b6 & 7u) | ((kMaxWindowLog + 1) << 3))), Errc::limit);
+    EXPECT_EQ(code(with_header_byte(frame, 6, (b6 & 7u) | (31u << 3))), Errc::limit);
     f = frame;
-    f[8] = 4;
-    EXPECT_EQ(code(f), Errc::reserved_bits);
-    f = frame;
-    f[11] = static_cast<char>(f[11] | 4);  // first block's flags
+    f[stz::kFrameHeaderSize] = static_cast<char>(f[stz::kFrameHeaderSize] | 0x40);  // first block's flags
     EXPECT_EQ(code(f), Errc::reserved_bits);
     f = frame + "x";
     EXPECT_EQ(code(f), Errc::corrupt);
+    f = frame + std::string(reinterpret_cast<const char*>(stz::kMagic), 3);
+    EXPECT_EQ(code(f), Errc::corrupt);
+}
+
+TEST(ContainerErrors, TheTrailerIsChecked) {
+    // The last 8 bytes are the content XXH64; before them the trailer flags
+    // (no metadata here: 0) and the varint decoded size.
+    const std::string frame = small_frame();
+    auto code = [](std::string f) {
+        auto r = decompress(f);
+        return r.ok() ? Errc::ok : r.error().code;
+    };
+    const std::size_t flags = frame.size() - 9;
+    ASSERT_EQ(frame[flags], 0);
+    std::string f = frame;
+    f[flags] = 2;
+    EXPECT_EQ(code(f), Errc::reserved_bits);
+    f = frame;
+    f[flags - 1] = static_cast<char>(f[flags - 1] ^ 1);  // decoded size
+    EXPECT_EQ(code(f), Errc::corrupt);
+    f = frame;
+    f.back() = static_cast<char>(f.back() ^ 1);
+    EXPECT_EQ(code(f), Errc::checksum);
+    // Metadata declared over the limit: refused before it is read.
+    f = frame.substr(0, flags) + '\x01';
+    stz::put_varint(f, stz::kMaxMetadata + 1);
+    EXPECT_EQ(code(f + std::string(16, '\0')), Errc::limit);
 }
 
 // A frame around one hand-made chain payload, with valid checksums.
@@ -90,14 +139,12 @@ std::string frame_with_payload(const std::string& payload, unsigned type = stz::
     stz::FrameHeader h;
     h.profile = Profile::eval8;
     std::string f = stz::write_frame_header(h);
-    const std::string header = f;
     f += stz::make_block_record(type, 0, payload, 3);
-    std::string end;
-    stz::put_u8(end, stz::kEnd);
-    stz::put_le(end, 0, 8 * 4);
-    stz::put_le(end, stz::check32(header + end), 4);
-    stz::put_le(end, stz::hash64(""), 8);
-    return f + end;
+    stz::put_u8(f, stz::kEnd);
+    stz::put_varint(f, 0);  // decoded size
+    stz::put_u8(f, 0);      // trailer flags
+    stz::put_le(f, stz::hash64(""), 8);
+    return f;
 }
 
 std::string payload(std::uint64_t chains, std::uint64_t segs, std::uint64_t steps,
@@ -113,8 +160,13 @@ std::string payload(std::uint64_t chains, std::uint64_t segs, std::uint64_t step
 
 TEST(ContainerErrors, DeclaredSizesOverTheLimitsAreRejectedBeforeAllocating) {
     // Block header claiming a 4 GiB payload in a few bytes.
-    std::string f = small_frame();
-    for (int i = 0; i < 4; ++i) f[stz::kFrameHeaderSize + 2 + i] = '\xFF';
+    const std::string frame = small_frame();
+    Cursor cur(std::string_view(frame).substr(stz::kFrameHeaderSize + 1));
+    std::uint64_t csize;
+    ASSERT_TRUE(cur.varint(csize));
+    std::string f = frame.substr(0, stz::kFrameHeaderSize + 1);
+    stz::put_varint(f, std::uint64_t{1} << 32);
+    f += frame.substr(stz::kFrameHeaderSize + 1 + cur.pos());
     auto r = decompress(f);
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.error().code, Errc::limit) << r.error().message;

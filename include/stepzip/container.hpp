@@ -26,7 +26,9 @@
 namespace stepzip {
 
 /// Version of the .stz byte format written by this library (docs/FORMAT.md).
-inline constexpr int kFormatVersion = 1;
+inline constexpr int kFormatVersion = 2;
+/// Oldest format version the decoder still reads.
+inline constexpr int kOldestFormatVersion = 1;
 
 /// Decoder limits (docs/FORMAT.md "Limits"). A frame exceeding any of them is
 /// rejected with Errc::limit before anything of that size is allocated.
@@ -34,6 +36,12 @@ inline constexpr std::uint32_t kMaxBlockPayload = 64u << 20;     ///< compressed
 inline constexpr std::uint32_t kMaxBlockBytes = 256u << 20;      ///< decoded bytes of a raw block
 inline constexpr std::uint64_t kMaxBlockSteps = std::uint64_t{1} << 24;  ///< steps (and segments) per block
 inline constexpr std::uint64_t kMaxBlockChains = std::uint64_t{1} << 20; ///< chains per block
+/// Largest window a frame may declare: 2^kMaxWindowLog steps + chains of
+/// earlier blocks (docs/FORMAT.md "Window"); a larger one is Errc::limit.
+inline constexpr int kMaxWindowLog = 23;
+/// A window covers at most this many earlier blocks (docs/FORMAT.md
+/// "Window"): rebuilding it costs a block at most this many blocks' work.
+inline constexpr std::size_t kMaxWindowBlocks = 8;
 
 /// Segmenter implied by a level when none is named: greedy below
 /// kOptimalLevel, optimal from it on.
@@ -52,12 +60,18 @@ struct CompressOptions {
     /// segments (docs/FORMAT.md "Raw blocks"); false forces chain blocks
     /// wherever the profile can represent the chains.
     bool allow_raw = true;
+    /// Window across blocks: 2^window_log steps + chains of earlier blocks
+    /// (0: blocks independent; at most kMaxWindowLog); nullopt: set by the
+    /// level (docs/FORMAT.md "Encoder behaviour").
+    std::optional<int> window_log;
 };
 
 /// What a frame holds; filled by compress_stream(), decompress_stream() and
 /// inspect_stream().
 struct FrameInfo {
-    int format_version = kFormatVersion;
+    int format_version = kFormatVersion; ///< of the first frame
+    std::uint64_t frames = 1;           ///< frames read (concatenated frames decode as one stream)
+    std::uint64_t window = 0;           ///< window of the first frame, in steps + chains (0: none)
     Profile profile = Profile::eval8;
     InputFormat format = InputFormat::freeman;
     SegmenterKind segmenter = SegmenterKind::greedy;
@@ -103,8 +117,10 @@ using ProgressFn = std::function<void(std::uint64_t bytes)>;
 Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const CompressOptions& opt,
                                   const ProgressFn& progress = {});
 
-/// Decodes one .stz frame from `in`, writing the original bytes through
-/// `out` block by block, and checks the frame's XXH64.
+/// Decodes a .stz stream from `in`: one frame, or several frames back to
+/// back (decoded as one stream, as zstd and gzip do), writing the original
+/// bytes through `out` block by block, and checks each frame's XXH64.
+/// Reads every format version from kOldestFormatVersion to kFormatVersion.
 /// Errors (messages name `source` and the byte offset in the frame):
 /// Errc::bad_magic, bad_version, reserved_bits, truncated, corrupt, limit,
 /// checksum, io. On error, bytes already passed to `out` must be discarded.
@@ -116,7 +132,7 @@ Result<FrameInfo> decompress_stream(const ReadFn& in, const WriteFn& out,
                                     std::string_view source = "<input>",
                                     const ProgressFn& progress = {});
 
-/// Reads a frame's structure and counts (profile, chains, steps, segments,
+/// Reads the structure and counts of the frames of a stream (profile, chains, steps, segments,
 /// patent statistics) without rendering it; block checksums are checked but
 /// the content XXH64 is not (use decompress_stream for that).
 /// Errors: as decompress_stream().

@@ -17,14 +17,22 @@ std::uint32_t check32(std::string_view data) { return static_cast<std::uint32_t>
 
 // ---------------------------------------------------------------- header
 
+namespace {
+// Version 2 header byte 5: profile bits 0-2, input format bits 3-4,
+// segmenter bits 5-6, bit 7 reserved; byte 6: axes bits 0-2, window log
+// bits 3-7; byte 7: header check.
+unsigned header_check(std::string_view first7) {
+    return static_cast<unsigned>(hash64(first7.substr(0, 7)) >> 8) & 0xFFu;
+}
+}  // namespace
+
 std::string write_frame_header(const FrameHeader& h) {
     std::string out(reinterpret_cast<const char*>(kMagic), 4);
     put_u8(out, kFormatVersion);
-    put_u8(out, static_cast<unsigned>(h.profile));
-    put_u8(out, static_cast<unsigned>(h.format));
-    put_u8(out, static_cast<unsigned>(h.axes));
-    put_u8(out, static_cast<unsigned>(h.segmenter));
-    put_u8(out, 0);
+    put_u8(out, static_cast<unsigned>(h.profile) | (static_cast<unsigned>(h.format) << 3) |
+                    (static_cast<unsigned>(h.segmenter) << 5));
+    put_u8(out, static_cast<unsigned>(h.axes) | (static_cast<unsigned>(h.window_log) << 3));
+    put_u8(out, header_check(out));
     return out;
 }
 
@@ -41,37 +49,83 @@ Result<FrameHeader> parse_frame_header(std::string_view b, std::string_view sour
     if (b.size() < 5)
         return make_error(Errc::truncated, src + ": byte 4: truncated frame header");
     const unsigned version = static_cast<unsigned char>(b[4]);
-    if (version != static_cast<unsigned>(kFormatVersion))
+    if (version < static_cast<unsigned>(kOldestFormatVersion) || version > static_cast<unsigned>(kFormatVersion))
         return make_error(Errc::bad_version, src + ": byte 4: format version " +
                                                  std::to_string(version) + " is not supported (this "
-                                                 "decoder reads version " +
+                                                 "decoder reads versions " +
+                                                 std::to_string(kOldestFormatVersion) + " to " +
                                                  std::to_string(kFormatVersion) + ")");
-    if (b.size() < kFrameHeaderSize)
+    FrameHeader h;
+    h.version = static_cast<int>(version);
+    if (b.size() < h.size())
         return make_error(Errc::truncated,
                           src + ": byte " + std::to_string(b.size()) + ": truncated frame header");
-    FrameHeader h;
-    const unsigned prof = static_cast<unsigned char>(b[5]);
-    const unsigned fmt = static_cast<unsigned char>(b[6]);
-    const unsigned axes = static_cast<unsigned char>(b[7]);
-    const unsigned seg = static_cast<unsigned char>(b[8]);
-    const unsigned reserved = static_cast<unsigned char>(b[9]);
+    unsigned prof, fmt, axes, seg;
+    if (version == 1) {
+        prof = static_cast<unsigned char>(b[5]);
+        fmt = static_cast<unsigned char>(b[6]);
+        axes = static_cast<unsigned char>(b[7]);
+        seg = static_cast<unsigned char>(b[8]);
+        const unsigned reserved = static_cast<unsigned char>(b[9]);
+        if ((seg & ~3u) != 0 || reserved != 0)
+            return make_error(Errc::reserved_bits,
+                              src + ": byte " + ((seg & ~3u) ? "8" : "9") + ": reserved bits are set");
+    } else {
+        if (static_cast<unsigned char>(b[7]) != header_check(b))
+            return make_error(Errc::checksum, src + ": byte 7: frame header check mismatch");
+        const unsigned d = static_cast<unsigned char>(b[5]);
+        const unsigned w = static_cast<unsigned char>(b[6]);
+        if ((d & 0x80u) != 0)
+            return make_error(Errc::reserved_bits, src + ": byte 5: reserved bit is set");
+        prof = d & 7u;
+        fmt = (d >> 3) & 3u;
+        seg = (d >> 5) & 3u;
+        axes = w & 7u;
+        h.window_log = static_cast<int>(w >> 3);
+        if (h.window_log > kMaxWindowLog)
+            return make_error(Errc::limit, src + ": byte 6: window of 2^" + std::to_string(h.window_log) +
+                                               " exceeds the decoder limit of 2^" +
+                                               std::to_string(kMaxWindowLog));
+    }
     if (prof > static_cast<unsigned>(Profile::marlin))
         return make_error(Errc::corrupt, src + ": byte 5: unknown profile " + std::to_string(prof));
     if (fmt > static_cast<unsigned>(InputFormat::steps))
-        return make_error(Errc::corrupt, src + ": byte 6: unknown input format " + std::to_string(fmt));
+        return make_error(Errc::corrupt, src + ": byte " + (version == 1 ? "6" : "5") +
+                                             ": unknown input format " + std::to_string(fmt));
     h.profile = static_cast<Profile>(prof);
     if (axes < 2 || static_cast<int>(axes) > profile_max_axes(h.profile))
-        return make_error(Errc::corrupt, src + ": byte 7: axis count " + std::to_string(axes) +
-                                             " is not valid for profile " +
+        return make_error(Errc::corrupt, src + ": byte " + (version == 1 ? "7" : "6") + ": axis count " +
+                                             std::to_string(axes) + " is not valid for profile " +
                                              std::string(profile_name(h.profile)));
-    if ((seg & ~3u) != 0 || reserved != 0)
-        return make_error(Errc::reserved_bits,
-                          src + ": byte " + ((seg & ~3u) ? "8" : "9") + ": reserved bits are set");
-    if (seg > 2) return make_error(Errc::corrupt, src + ": byte 8: unknown segmenter 3");
+    if (seg > 2)
+        return make_error(Errc::corrupt, src + ": byte " + (version == 1 ? "8" : "5") + ": unknown segmenter 3");
     h.format = static_cast<InputFormat>(fmt);
     h.axes = static_cast<int>(axes);
     h.segmenter = static_cast<SegmenterKind>(seg);
     return h;
+}
+
+std::string block_header(unsigned type, unsigned flags, std::uint64_t csize, std::uint64_t dsize) {
+    std::string out;
+    put_u8(out, type | (flags << 3));
+    put_varint(out, csize);
+    if (type == kChains || type == kRaw) put_varint(out, dsize);
+    return out;
+}
+
+RecordView view_record(std::string_view rec) {
+    RecordView v;
+    Cursor cur(rec);
+    unsigned b = 0;
+    std::uint64_t csize = 0;
+    cur.u8(b);
+    v.type = b & 7u;
+    v.flags = b >> 3;
+    cur.varint(csize);
+    v.dsize = csize;
+    if (v.type == kChains || v.type == kRaw) cur.varint(v.dsize);
+    cur.bytes(static_cast<std::size_t>(csize), v.payload);
+    return v;
 }
 
 // ---------------------------------------------------------------- directions
@@ -288,27 +342,19 @@ Result<void> read_chain_payload(std::string_view payload, Profile p, int axes, b
 // ---------------------------------------------------------------- records
 
 std::string make_block_record(unsigned type, unsigned flags, std::string_view raw, int level) {
-    std::string rec;
-    put_u8(rec, type);
-    put_u8(rec, flags);
     const std::size_t bound = ZSTD_compressBound(raw.size());
     std::string z(bound, '\0');
     const std::size_t n = ZSTD_compress(z.data(), bound, raw.data(), raw.size(), level);
     if (ZSTD_isError(n)) return {};
     z.resize(n);
-    put_le(rec, z.size(), 4);
-    put_le(rec, raw.size(), 4);
+    std::string rec = block_header(type, flags, z.size(), raw.size());
     rec += z;
     put_le(rec, check32(rec), 4);
     return rec;
 }
 
 std::string make_stored_record(unsigned type, unsigned flags, std::string_view payload) {
-    std::string rec;
-    put_u8(rec, type);
-    put_u8(rec, flags);
-    put_le(rec, payload.size(), 4);
-    put_le(rec, payload.size(), 4);
+    std::string rec = block_header(type, flags, payload.size(), payload.size());
     rec += payload;
     put_le(rec, check32(rec), 4);
     return rec;

@@ -241,6 +241,33 @@ public:
 
     void set_grid(std::int64_t g) { grid_ = g; }
 
+    // Starts the block from the window (docs/FORMAT.md "Window"): every item
+    // of the window's segment-model blocks, in order, enters the history,
+    // the match table and the shape lists as if it had been coded; the
+    // match and the coding contexts stay as at a block's start.
+    void prime(const WindowView& window) {
+        for (const auto& b : window) {
+            const SegmentItems& w = b->items;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                push(kStartTag | static_cast<std::uint32_t>(starts_.size()), false);
+                starts_.push_back(w.starts[c]);
+                prev_shape_ = kNone;
+                for (std::uint32_t n = 0; n < w.counts[c]; ++n, ++k) {
+                    const Item it = item_of(w.segments[k]);
+                    std::uint32_t id = find_shape(it);
+                    if (id == kNewShape) id = add_shape(it);
+                    note_shape(id);
+                    push(id, false);
+                }
+                push(kEndId, false);
+            }
+        }
+        ptr_ = -1;
+        len_ = 0;
+        prev_shape_ = kNone;
+    }
+
     // Codes a chain start delta (encoder: `want`); returns it.
     Point start(const Point& want) {
         const std::uint32_t pred = predicted(kStart);
@@ -640,7 +667,7 @@ Result<std::string> get_layout(Cursor& cur, const std::string& where) {
 }
 
 std::string write_segment_model(const Block& block, Profile p,
-                                const std::vector<std::vector<Segment>>& segs) {
+                                const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
     Counts c;
     c.nchains = block.chains.size();
     for (std::size_t i = 0; i < segs.size(); ++i)
@@ -672,6 +699,7 @@ std::string write_segment_model(const Block& block, Profile p,
     EncIo io;
     SegmentCoder<EncIo> coder(io, p, block.axes);
     coder.set_grid(static_cast<std::int64_t>(grid));
+    if (window) coder.prime(*window);
     Point ref{};
     for (std::size_t i = 0; i < block.chains.size(); ++i) {
         const Chain& chain = block.chains[i];
@@ -701,7 +729,8 @@ std::string write_segment_model(const Block& block, Profile p,
 }
 
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
-                                Block& out, BlockCounts& counts, const std::string& where) {
+                                Block& out, BlockCounts& counts, const std::string& where,
+                                const WindowView* window, SegmentItems* items) {
     Cursor cur(payload);
     Counts c;
     if (!cur.varint(c.nchains) || !cur.varint(c.nsegments) || !cur.varint(c.nsteps))
@@ -718,6 +747,8 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     DecIo io(payload.substr(base));
     SegmentCoder<DecIo> coder(io, p, axes);
     coder.set_grid(static_cast<std::int64_t>(grid));
+    if (window) coder.prime(*window);
+    if (items) *items = SegmentItems{};
     if (expand) {
         out.axes = axes;
         out.chains.clear();
@@ -737,6 +768,10 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
             chain.start[a] = stz::wrap_add(ref[a], d[a]);
             if (!stz::start_in_range(chain.start[a])) return fail("chain start out of range");
         }
+        if (items) {
+            items->starts.push_back(d);
+            items->counts.push_back(0);
+        }
         Point pos = chain.start;
         Segment seg;
         for (std::uint64_t k = 0;; ++k) {
@@ -749,6 +784,10 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
             ++c.seen_segments;
             for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
             if (expand) expand_segment(p, seg, axes, chain.steps);
+            if (items) {
+                items->segments.push_back(seg);
+                ++items->counts.back();
+            }
         }
         ref = pos;
         if (expand) out.chains.push_back(std::move(chain));

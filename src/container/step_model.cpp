@@ -40,6 +40,7 @@ struct StepContexts {
     Prob end[4];         // ctx: (at start point) + 2 * (no step yet)
     Prob hit[24][2];     // ctx: length bucket x (predicted end)
     UIntModel start[2];
+    Prob start_hit[24];  // version 2: chain start as the match predicts, ctx length bucket
 };
 
 struct Counts {
@@ -50,7 +51,7 @@ struct Counts {
 // 39 bits) -> the history position that followed them most recently. Open
 // addressing, one 64-bit slot per entry (key << 25 | position; a position
 // is at least kMinMatch, so 0 marks an empty slot). Positions are below
-// 2^25 (kMaxBlockSteps + kMaxBlockChains symbols). Same answers as a map.
+// 2^25 (window, kMaxBlockSteps + kMaxBlockChains symbols). Same answers as a map.
 //
 // A key is looked up as (first 11 symbols, last symbol): the home slot is
 // the hash of the first 11 times 8 plus the last symbol, so the keys that
@@ -124,7 +125,9 @@ private:
     std::size_t used_ = 0;
 };
 
-static_assert(kMaxBlockSteps + kMaxBlockChains < (std::uint64_t{1} << MatchTable::kPosBits));
+// A block's history: the window's symbols (at most 2^kMaxWindowLog), then its own.
+static_assert((std::uint64_t{1} << kMaxWindowLog) + kMaxBlockSteps + kMaxBlockChains <
+              (std::uint64_t{1} << MatchTable::kPosBits));
 static_assert(kMinMatch == 12);  // 9^12 < 2^39: key and position share one 64-bit slot
 
 constexpr std::uint64_t pow9(int k) { return k == 0 ? 1 : 9 * pow9(k - 1); }
@@ -132,14 +135,45 @@ constexpr std::uint64_t pow9(int k) { return k == 0 ? 1 : 9 * pow9(k - 1); }
 template <class Io>
 class StepCoder {
 public:
-    StepCoder(Io& io, int order)
-        : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1) {}
+    // `predict_starts`: version 2 (chain starts predicted by the match).
+    StepCoder(Io& io, int order, bool predict_starts)
+        : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1),
+          predict_starts_(predict_starts) {}
+
+    // Starts the block from the window (docs/FORMAT.md "Window"): the
+    // window's symbols enter the history and the match table in order; the
+    // match, `prev` and `turns` stay as at a block's start.
+    void prime(const WindowView& window) {
+        for (const auto& b : window) {
+            std::size_t chain = 0;
+            bool at_start = true;
+            for (std::uint8_t sym : b->symbols) {
+                if (at_start && chain < b->starts.size()) note_start(b->starts[chain++]);
+                push(sym);
+                at_start = sym == kEndSymbol;
+            }
+        }
+        ptr_ = -1;
+        len_ = 0;
+    }
 
     Point start(const Point& want) {
         Point d{};
-        for (int i = 0; i < 2; ++i) {
-            d[i] = code_sint(io_, ctx_->start[i], want[i]);  // the rebuilt start is range-checked
+        bool hit = false;
+        if (predict_starts_ && ptr_ >= 0) {
+            // The match predicts a chain start when it points at one.
+            const auto it = std::lower_bound(start_pos_.begin(), start_pos_.end(), static_cast<std::uint32_t>(ptr_));
+            if (it != start_pos_.end() && *it == static_cast<std::uint32_t>(ptr_)) {
+                const Point& pred = start_delta_[static_cast<std::size_t>(it - start_pos_.begin())];
+                hit = io_.bit(ctx_->start_hit[len_bucket(len_)], want == pred);
+                if (hit) d = pred;
+            }
         }
+        if (!hit)
+            for (int i = 0; i < 2; ++i) {
+                d[i] = code_sint(io_, ctx_->start[i], want[i]);  // the rebuilt start is range-checked
+            }
+        if (predict_starts_) note_start(d);
         return d;
     }
 
@@ -236,9 +270,17 @@ private:
         }
     }
 
+    void note_start(const Point& d) {
+        start_pos_.push_back(static_cast<std::uint32_t>(hist_.size()));
+        start_delta_.push_back(d);
+    }
+
     Io& io_;
     std::unique_ptr<StepContexts> ctx_;
     unsigned mask_;
+    bool predict_starts_;
+    std::vector<std::uint32_t> start_pos_;  // history position of each chain's first symbol
+    std::vector<Point> start_delta_;        // and its start delta
     MatchTable table_;          // last kMinMatch symbols -> next position
     std::uint64_t context_ = 0;  // last kMinMatch symbols, base 9
     std::vector<std::uint8_t> hist_;
@@ -252,7 +294,7 @@ private:
 
 namespace {
 
-std::string write_step_model_order(const Block& block, int order) {
+std::string write_step_model_order(const Block& block, int order, const WindowView* window) {
     Counts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
@@ -262,7 +304,8 @@ std::string write_step_model_order(const Block& block, int order) {
     put_u8(out, static_cast<unsigned>(order));
     put_layout(out, block.layout);
     EncIo io;
-    StepCoder<EncIo> coder(io, order);
+    StepCoder<EncIo> coder(io, order, true);
+    if (window) coder.prime(*window);
     Point ref{};
     for (const Chain& chain : block.chains) {
         Point d{};
@@ -287,26 +330,33 @@ std::string write_step_model_order(const Block& block, int order) {
 
 }  // namespace
 
-std::string write_step_model(const Block& block, int order) {
+std::string write_step_model(const Block& block, int order, const WindowView* window, int* chosen) {
     if (block.axes != 2) return {};
-    if (order >= 1 && order <= kMaxStepOrder) return write_step_model_order(block, order);
+    if (order >= 1 && order <= kMaxStepOrder) {
+        if (chosen) *chosen = order;
+        return write_step_model_order(block, order, window);
+    }
     // The context order is the encoder's choice: the smallest output wins
     // (a low order learns fast on small or noisy blocks, a high one models
     // contours).
     std::string best;
     for (int order = 1; order <= kMaxStepOrder; ++order) {
-        std::string alt = write_step_model_order(block, order);
+        std::string alt = write_step_model_order(block, order, window);
 #ifdef STEPZIP_MODEL_STATS
         std::fprintf(stderr, "order %d: %zu\n", order, alt.size());
 #endif
         if (alt.empty()) return {};
-        if (best.empty() || alt.size() < best.size()) best = std::move(alt);
+        if (best.empty() || alt.size() < best.size()) {
+            best = std::move(alt);
+            if (chosen) *chosen = order;
+        }
     }
     return best;
 }
 
 Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
-                             BlockCounts& counts, const std::string& where) {
+                             BlockCounts& counts, const std::string& where, const WindowView* window,
+                             int version) {
     Cursor cur(payload);
     if (axes != 2) return make_error(Errc::corrupt, where + " byte 0: step-model block on " +
                                                         std::to_string(axes) + " axes");
@@ -322,7 +372,8 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    StepCoder<DecIo> coder(io, static_cast<int>(order));
+    StepCoder<DecIo> coder(io, static_cast<int>(order), version >= 2);
+    if (window) coder.prime(*window);
     if (expand) {
         out.axes = axes;
         out.chains.clear();

@@ -77,7 +77,7 @@ assert good[10] == 3, 'plotter.fc.stz should hold a segment-model block'
 end = block_end(good)       # offset of the end mark
 files = {
     'bad_magic': ('bad magic', edit(good, 0, 0x37)),
-    'bad_version': ('bad version', edit(good, 4, 2)),
+    'bad_version': ('bad version', edit(good, 4, 99)),
     'reserved_header': ('reserved bits', edit(good, 9, 1)),
     'reserved_segmenter': ('reserved bits', edit(good, 8, good[8] | 0x80)),
     'reserved_block_flags': ('reserved bits', edit(good, 11, good[11] | 4)),

@@ -1,0 +1,338 @@
+// The encoder's block strategy (docs/FORMAT.md section 4): which encodings a
+// level tries for a block, with which cuts and thresholds, the profile and
+// cut chosen on a sample of the first block, and the second pass that codes
+// a modeled block again from the window.
+#include <algorithm>
+
+#include "aligned_cut.hpp"
+#include "encoder.hpp"
+#include "modeled_block.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+// Below kThoroughLevel: steps of the first block's sample that picks the
+// profile and the cut under --profile auto.
+constexpr std::uint64_t kSampleSteps = 1u << 15;
+// Segments per 1000 steps below which the segment model always wins and
+// above which the step model always wins (measured on corpora/: 8.6..52
+// against 383..663); in between both are encoded.
+constexpr std::uint64_t kSegmentModelOnly = 60, kStepModelOnly = 250;
+// Step-model context order used below the thorough levels (within 1% of the
+// best order on every corpus file).
+constexpr int kFastStepOrder = 2;
+
+using Cut = std::vector<std::vector<Segment>>;
+
+// Segments every chain of `block` under `p`; errors name the chain and step.
+Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cut& segs, SegmentStats& stats,
+                           std::uint64_t first_chain, const std::string& source) {
+    segs.assign(block.chains.size(), {});
+    for (std::size_t c = 0; c < block.chains.size(); ++c) {
+        auto r = segment_steps(block.chains[c].steps, block.axes, p, kind, segs[c], &stats);
+        if (!r)
+            return make_error(r.error().code, source + ": chain " + std::to_string(first_chain + c + 1) +
+                                                  ": profile " + std::string(profile_name(p)) + ": " +
+                                                  r.error().message);
+    }
+    return {};
+}
+
+// The default-phase cut of every chain (aligned_cut.hpp); false when a chain
+// has none.
+bool aligned_block_cut(const Block& block, Profile p, Cut& out) {
+    out.assign(block.chains.size(), {});
+    for (std::size_t c = 0; c < block.chains.size(); ++c)
+        if (!cut_preferring_default(block.chains[c].steps, block.axes, p, out[c])) return false;
+    return true;
+}
+
+bool representable(const Block& block, Profile p, int axes) {
+    if (block.axes != axes || block.axes > profile_max_axes(p)) return false;
+    if (block.chains.size() > kMaxBlockChains) return false;
+    std::uint64_t steps = 0;
+    for (const Chain& c : block.chains) {
+        steps += c.steps.size();
+        if (!profile_accepts(p, c.steps, block.axes)) return false;
+    }
+    return steps <= kMaxBlockSteps;
+}
+
+// The segment-model cuts a level tries: the segmenter's; at the thorough
+// levels also the greedy cut (when the segmenter is another: the fewest
+// segments are not always the cheapest to code) and the default-phase cut.
+// Below them, the default-phase cut alone when the sample chose it.
+std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut segs, bool segs_aligned) {
+    std::vector<Cut> cuts;
+    if (!s.thorough) {
+        Cut aligned;
+        if (s.aligned_cut && !segs_aligned && aligned_block_cut(block, s.profile, aligned))
+            cuts.push_back(std::move(aligned));
+        else
+            cuts.push_back(std::move(segs));
+        return cuts;
+    }
+    if (s.segmenter != SegmenterKind::greedy) {
+        Cut greedy;
+        SegmentStats unused;
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source)) cuts.push_back(std::move(greedy));
+    }
+    Cut aligned;
+    const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
+    cuts.insert(cuts.begin(), std::move(segs));
+    if (have_aligned) cuts.push_back(std::move(aligned));
+    return cuts;
+}
+
+// The smallest segment-model payload over `cuts` (the first on a tie);
+// `which` is its index.
+std::string smallest_segment_model(const Block& block, Profile p, const std::vector<Cut>& cuts,
+                                   std::size_t& which) {
+    std::string best;
+    for (std::size_t i = 0; i < cuts.size(); ++i) {
+        std::string alt = write_segment_model(block, p, cuts[i]);
+        if (best.empty() || alt.size() < best.size()) {
+            best = std::move(alt);
+            which = i;
+        }
+    }
+    return best;
+}
+
+// Encoded size of a block under `p` (for --profile auto at the thorough
+// levels); SIZE_MAX when `p` cannot represent it.
+std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& base) {
+    if (!representable(block, p, block.axes)) return SIZE_MAX;
+    EncoderSettings s = base;
+    s.profile = p;
+    Cut segs;
+    SegmentStats stats;
+    if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
+    const std::string rec = make_block_record(kChains, 0, write_chain_payload(block, p, segs), s.level);
+    std::size_t which = 0;
+    const std::size_t model = smallest_segment_model(block, p, model_cuts(block, s, segs, false), which).size();
+    return rec.empty() ? model : std::min(rec.size(), model);
+}
+
+// About `limit` steps of `block` for estimates only: eight stretches of
+// whole chains (the last of each cut short) spread evenly over the block,
+// without its layout.
+Block sample_of(const Block& block, std::uint64_t limit) {
+    constexpr std::uint64_t kStretches = 8;
+    Block out;
+    out.axes = block.axes;
+    std::uint64_t total = 0;
+    for (const Chain& c : block.chains) total += c.steps.size();
+    std::uint64_t at = 0, next = 0, left = 0;
+    const std::uint64_t each = std::max<std::uint64_t>(1, limit / kStretches);
+    for (const Chain& c : block.chains) {
+        if (left == 0 && at >= next && next < total) {
+            left = each;
+            next = std::max(next + total / kStretches, at + 1);
+        }
+        at += c.steps.size();
+        if (left == 0) continue;
+        Chain piece;
+        piece.axes = c.axes;
+        piece.start = c.start;
+        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, c.steps.size()));
+        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
+        left -= n;
+        out.chains.push_back(std::move(piece));
+    }
+    return out;
+}
+
+// Below the thorough levels: the segment-model size of the first block's
+// sample under `p` with the segmenter's cut and, but for the patent profile,
+// with the default-phase cut; SIZE_MAX when `p` cannot represent the
+// sample. `aligned` tells which cut was smaller.
+std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& base, bool& aligned) {
+    aligned = false;
+    if (!representable(sample, p, sample.axes)) return SIZE_MAX;
+    Cut segs;
+    SegmentStats stats;
+    if (!segment_block(sample, p, base.segmenter, segs, stats, 0, base.source)) return SIZE_MAX;
+    std::size_t best = write_segment_model(sample, p, segs).size();
+    Cut cut;
+    if (p != Profile::patent && aligned_block_cut(sample, p, cut)) {
+        const std::size_t alt = write_segment_model(sample, p, cut).size();
+        if (alt < best) {
+            best = alt;
+            aligned = true;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+int window_log_for_level(int level) {
+    // In steps + chains (about bytes of Freeman text); zstd's and xz's level
+    // tables are the anchors: a few MiB at the fast levels, 8 MiB at the top.
+    if (level <= 2) return 21;
+    if (level < kThoroughLevel) return 22;
+    return kMaxWindowLog;
+}
+
+Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
+    s.axes = first.axes;
+    if (!s.profile_named && s.thorough) {
+        std::size_t best = SIZE_MAX;
+        for (Profile p : kAllProfiles) {
+            const std::size_t n = trial_size(first, p, s);
+            if (n < best) {
+                best = n;
+                s.profile = p;
+            }
+        }
+    } else if (!s.thorough && representable(first, s.profile, first.axes)) {
+        // One sample picks the profile (auto) and the cut.
+        const Block sample = sample_of(first, kSampleSteps);
+        std::size_t best = SIZE_MAX;
+        for (Profile p : kAllProfiles) {
+            if (s.profile_named && p != s.profile) continue;
+            bool aligned = false;
+            const std::size_t n = sample_size(sample, p, s, aligned);
+            if (n < best) {
+                best = n;
+                s.profile = p;
+                s.aligned_cut = aligned;
+            }
+        }
+    }
+    if (s.profile_named && s.axes > profile_max_axes(s.profile))
+        return make_error(Errc::invalid_argument, s.source + ": profile " + std::string(profile_name(s.profile)) +
+                                                      " does not take " + std::to_string(s.axes) + " axes");
+    return {};
+}
+
+void choose_block(BlockJob& job, const EncoderSettings& s) {
+    const Block& block = job.block;
+    job.flags = (block.continues ? kFlagContinues : 0u) | (block.open ? kFlagOpen : 0u);
+    std::string best;
+    unsigned type = kRaw;
+    auto consider = [&](unsigned t, std::string rec) {
+        if (rec.empty() || (!best.empty() && rec.size() >= best.size())) return false;
+        best = std::move(rec);
+        type = t;
+        return true;
+    };
+    const bool fits = block.axes == s.axes && block.chains.size() <= kMaxBlockChains;
+    job.steps = 0;
+    for (const Chain& c : block.chains) job.steps += c.steps.size();
+    bool segment_model_only = false;
+    if (representable(block, s.profile, s.axes)) {
+        Cut segs;
+        // Below the thorough levels, when the sample chose the default-phase
+        // cut, it is the only cut made (the chains were checked by representable()).
+        bool aligned = !s.thorough && s.aligned_cut && s.segmenter != SegmenterKind::patent &&
+                       aligned_block_cut(block, s.profile, segs);
+        if (!aligned) {
+            if (auto r = segment_block(block, s.profile, s.segmenter, segs, job.stats, job.first_chain, s.source); !r) {
+                job.error = std::move(r).error();
+                return;
+            }
+        }
+        std::uint64_t nsegs = 0;
+        for (const auto& v : segs) nsegs += v.size();
+        if (s.thorough) {
+            const std::string payload = write_chain_payload(block, s.profile, segs);
+            if (payload.size() <= kMaxBlockPayload)
+                consider(kChains, make_block_record(kChains, job.flags, payload, s.level));
+        }
+        segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
+        if (s.thorough || block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps) {
+            std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
+            std::size_t which = 0;
+            const std::string model = smallest_segment_model(block, s.profile, cuts, which);
+            if (model.size() <= kMaxBlockPayload &&
+                consider(kSegmentModel, make_stored_record(kSegmentModel, job.flags, model)))
+                job.cut = std::move(cuts[which]);
+        }
+    } else if (s.profile_named && block.axes == s.axes) {
+        for (std::size_t c = 0; c < block.chains.size(); ++c) {
+            auto r = profile_accepts(s.profile, block.chains[c].steps, block.axes);
+            if (!r) {
+                job.error = make_error(r.error().code, s.source + ": chain " + std::to_string(job.first_chain + c + 1) +
+                                                           ": profile " + std::string(profile_name(s.profile)) +
+                                                           " cannot represent it: " + r.error().message);
+                return;
+            }
+        }
+    }
+    if (fits && job.steps <= kMaxBlockSteps && !segment_model_only) {
+        int order = 0;
+        const std::string model = write_step_model(block, s.thorough ? 0 : kFastStepOrder, nullptr, &order);
+        if (!model.empty() && model.size() <= kMaxBlockPayload &&
+            consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
+            job.order = order;
+    }
+    const bool chain_kind = !best.empty();
+    if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {
+        job.error = make_error(Errc::limit, s.source + ": a block of " + std::to_string(job.bytes.size()) +
+                                                " bytes exceeds the raw block limit");
+        return;
+    }
+    // Below the thorough levels zstd of the bytes is tried only when the
+    // chain block is weak (less than 5:1): a general-purpose compressor does
+    // not come near a modeled block that reaches it (docs/benchmarks.md).
+    const bool raw_can_win = s.thorough || !chain_kind || best.size() * 5 > job.bytes.size();
+    if (job.bytes.size() <= kMaxBlockBytes && (!chain_kind || s.allow_raw) && raw_can_win) {
+        std::string raw;
+        put_varint(raw, block.chains.size());
+        put_varint(raw, job.steps);
+        raw += job.bytes;
+        if (consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level))) job.raw_payload = std::move(raw);
+    }
+    if (best.empty()) {
+        job.error = make_error(Errc::io, s.source + ": zstd compression failed");
+        return;
+    }
+    job.type = type;
+    job.record = std::move(best);
+    if (type != kSegmentModel) job.cut.clear();
+    if (type == kRaw) job.stats = {};
+    if (s.window_log != 0) {
+        auto w = std::make_shared<WindowBlock>();
+        w->weight = job.steps + block.chains.size();
+        if (type != kRaw) add_steps(*w, block);
+        job.contribution = std::move(w);
+    }
+}
+
+namespace {
+bool has_symbols(const WindowView& window) {
+    for (const auto& b : window)
+        if (!b->symbols.empty()) return true;
+    return false;
+}
+}  // namespace
+
+void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    int order = job.type == kStepModel ? job.order : s.thorough ? 0 : kFastStepOrder;
+    const std::string model = write_step_model(job.block, order, &window, &order);
+    if (model.empty() || model.size() > kMaxBlockPayload) return;
+    std::string rec = make_stored_record(kStepModel, job.flags | kFlagWindow, model);
+    if (rec.size() >= job.record.size()) return;
+    job.record = std::move(rec);
+    job.type = kStepModel;
+    job.order = order;
+    job.cut.clear();
+}
+
+void note_items(BlockJob& job) {
+    if (job.contribution && job.type == kSegmentModel) job.contribution->items = segment_items(job.block, job.cut);
+}
+
+void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (window.empty() || job.type != kSegmentModel) return;
+    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window);
+    if (model.empty() || model.size() > kMaxBlockPayload) return;
+    std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
+    if (rec.size() < job.record.size()) job.record = std::move(rec);
+}
+
+}  // namespace stepzip::stz

@@ -1,0 +1,97 @@
+// The .stz encoder's parts (docs/FORMAT.md section 4): the frame writer
+// (compress.cpp: read -> batch -> parallel jobs -> ordered write -> trailer)
+// runs, for every block, the block strategy (block_strategy.cpp: which
+// encodings a level tries, and with the window) and the round-trip proof
+// (round_trip.cpp). Internal to src/container.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "block_codec.hpp"
+#include "window.hpp"
+
+namespace stepzip::stz {
+
+/// Encoder effort: from this level on, every block is encoded every way;
+/// below it the choices are made cheaply (docs/FORMAT.md section 4).
+inline constexpr int kThoroughLevel = 10;
+
+/// What the frame writer fixed for every block of a frame.
+struct EncoderSettings {
+    Profile profile = Profile::eval8;
+    bool profile_named = false;
+    SegmenterKind segmenter = SegmenterKind::greedy;
+    int level = 3;
+    int axes = 2;
+    std::string source;
+    bool allow_raw = true;
+    bool thorough = false;     ///< try every encoding on every block
+    bool aligned_cut = false;  ///< below thorough: the default-phase cut won on the first block's sample
+    int window_log = 0;        ///< the frame's window (0: none)
+};
+
+/// One block in flight, from the reader to the ordered write.
+struct BlockJob {
+    Block block;
+    std::string bytes;              ///< the block's input bytes (proved equal to the input)
+    std::uint64_t first_chain = 0;  ///< index of the block's first chain in the input
+    std::uint64_t steps = 0;        ///< steps of the block
+
+    // The block strategy's choice.
+    unsigned type = kRaw;
+    unsigned flags = 0;      ///< kFlagContinues / kFlagOpen (kFlagWindow: set in `record`)
+    std::string record;      ///< the block record written
+    std::string raw_payload; ///< a raw block's payload before zstd
+    std::vector<std::vector<Segment>> cut;  ///< segment-model block: the cut coded
+    int order = 0;                          ///< step-model block: the context order
+    std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
+
+    // The round-trip proof.
+    Block decoded;  ///< the block as the decoder sees it (chain blocks)
+    BlockCounts counts;
+    SegmentStats stats;
+    Error error;
+};
+
+/// Block strategy, frame level: under --profile auto the profile, and below
+/// the thorough levels the segment-model cut, chosen on the first block.
+Result<void> choose_frame_settings(const Block& first, EncoderSettings& s);
+
+/// The window a level declares (log2 of steps + chains).
+int window_log_for_level(int level);
+
+/// Block strategy, first pass (parallel, without the window): the encodings
+/// the level tries, the smallest kept; sets the job's type, record, cut or
+/// order, and the part of its contribution to the window that depends only
+/// on whether it is a chain block: weight, Freeman symbols, chain starts.
+void choose_block(BlockJob& job, const EncoderSettings& s);
+
+/// Second pass (parallel): a chain block on two axes coded by the step
+/// model from `window` (whose symbols are fixed by the first pass), kept
+/// when smaller. Decides the final block type.
+void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window);
+
+/// The segment items a segment-model block adds to the window, once its
+/// type is final.
+void note_items(BlockJob& job);
+
+/// Third pass (parallel): a segment-model block coded again from `window`
+/// (whose items are fixed once every earlier block passed the second pass),
+/// kept when smaller.
+void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window);
+
+/// Round-trip proof, part 1 (parallel): decodes the job's record exactly as
+/// the decoder does (with `window` when flagged) and compares the chains
+/// and layout with the input. Sets job.error (Errc::mismatch) on failure.
+void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& window);
+
+/// Round-trip proof, part 2 (in block order): renders the decoded block with
+/// `proof`, a writer that sees exactly what the decoder's writer sees, and
+/// compares with the input bytes.
+Result<void> prove_rendered(BlockWriter& proof, const BlockJob& job, const EncoderSettings& s,
+                            std::uint64_t block_index);
+
+}  // namespace stepzip::stz

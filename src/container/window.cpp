@@ -1,0 +1,63 @@
+// Contributions of a block to the window (docs/FORMAT.md "Window").
+#include "window.hpp"
+
+#include "bytes.hpp"
+
+namespace stepzip::stz {
+
+std::vector<std::uint8_t> step_symbols(const Block& block) {
+    std::vector<std::uint8_t> out;
+    if (block.axes != 2) return out;
+    std::size_t n = 0;
+    for (const Chain& c : block.chains) n += c.steps.size() + 1;
+    out.reserve(n);
+    for (const Chain& c : block.chains) {
+        for (Step s : c.steps) {
+            const int code = step_to_freeman(s);
+            if (code < 0) return {};
+            out.push_back(static_cast<std::uint8_t>(code));
+        }
+        out.push_back(8);
+    }
+    return out;
+}
+
+std::vector<Point> start_deltas(const Block& block) {
+    std::vector<Point> out;
+    out.reserve(block.chains.size());
+    Point ref{};
+    for (const Chain& chain : block.chains) {
+        Point d{};
+        for (int a = 0; a < block.axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
+        out.push_back(d);
+        ref = chain.end();
+    }
+    return out;
+}
+
+void add_steps(WindowBlock& w, const Block& block) {
+    w.symbols = step_symbols(block);
+    if (!w.symbols.empty()) w.starts = start_deltas(block);
+}
+
+SegmentItems segment_items(const Block& block, const std::vector<std::vector<Segment>>& segs) {
+    SegmentItems out;
+    out.starts.reserve(block.chains.size());
+    out.counts.reserve(block.chains.size());
+    Point ref{};
+    for (std::size_t i = 0; i < block.chains.size(); ++i) {
+        const Chain& chain = block.chains[i];
+        Point d{};
+        for (int a = 0; a < block.axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
+        out.starts.push_back(d);
+        out.counts.push_back(static_cast<std::uint32_t>(segs[i].size()));
+        ref = chain.start;
+        for (const Segment& s : segs[i]) {
+            out.segments.push_back(s);
+            for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+        }
+    }
+    return out;
+}
+
+}  // namespace stepzip::stz

@@ -1,0 +1,75 @@
+// The window across blocks (docs/FORMAT.md "Window"): what the earlier blocks
+// of a frame add to the models of a later block. A block's contribution is a
+// function of its decoded content and its type only, so the encoder's jobs
+// and the decoder rebuild the same state. Internal to src/container.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+#include "stepzip/segment.hpp"
+
+namespace stepzip::stz {
+
+/// The items a segment-model block adds: per chain its start delta (from the
+/// previous chain's end, the first from the origin) and its segments.
+struct SegmentItems {
+    std::vector<Point> starts;
+    std::vector<std::uint32_t> counts;  ///< segments of each chain
+    std::vector<Segment> segments;
+};
+
+/// One earlier block as the window holds it.
+struct WindowBlock {
+    std::uint64_t weight = 0;           ///< steps + chains
+    SegmentItems items;                 ///< segment-model blocks; else empty
+    std::vector<std::uint8_t> symbols;  ///< two-axis chain blocks: Freeman codes, 8 after each chain
+    std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
+};
+
+/// The blocks inside the window, oldest first.
+using WindowView = std::vector<std::shared_ptr<const WindowBlock>>;
+
+/// The blocks a frame's next block sees: the longest run of at most
+/// kMaxWindowBlocks immediately preceding blocks whose weights add up to at
+/// most the window.
+class Window {
+public:
+    explicit Window(std::uint64_t limit = 0) : limit_(limit) {}
+    std::uint64_t limit() const { return limit_; }
+    WindowView view() const { return WindowView(blocks_.begin(), blocks_.end()); }
+    void push(std::shared_ptr<const WindowBlock> b) {
+        if (limit_ == 0) return;
+        weight_ += b->weight;
+        blocks_.push_back(std::move(b));
+        while (!blocks_.empty() && (weight_ > limit_ || blocks_.size() > kMaxWindowBlocks)) {
+            weight_ -= blocks_.front()->weight;
+            blocks_.pop_front();
+        }
+    }
+
+private:
+    std::uint64_t limit_;
+    std::uint64_t weight_ = 0;
+    std::deque<std::shared_ptr<const WindowBlock>> blocks_;
+};
+
+/// Freeman codes of a two-axis block's chains, 8 after each chain; empty
+/// when the block is not two-axis or holds a step that is no Freeman code.
+std::vector<std::uint8_t> step_symbols(const Block& block);
+
+/// Each chain's start delta: from the previous chain's end (the first from
+/// the origin), as the models code it.
+std::vector<Point> start_deltas(const Block& block);
+
+/// The step-model contribution of a chain block: its symbols and starts.
+void add_steps(WindowBlock& w, const Block& block);
+
+/// The segment items of `block` cut into `segs`.
+SegmentItems segment_items(const Block& block, const std::vector<std::vector<Segment>>& segs);
+
+}  // namespace stepzip::stz

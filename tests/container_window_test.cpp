@@ -1,0 +1,155 @@
+// Format version 2 (docs/FORMAT.md): the window across blocks finds repeats
+// farther than a block but not farther than the declared window, the bytes
+// do not depend on the thread count, a block that uses a window the frame
+// does not declare is refused; frames back to back decode as one stream;
+// the fixed overhead of a frame is small.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "../src/container/block_codec.hpp"
+#include "../src/container/bytes.hpp"
+#include "../src/container/memory_io.hpp"
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+
+namespace stepzip {
+namespace {
+
+// Plotter-like chains: runs of one direction with occasional turns.
+std::string chains_text(std::uint64_t seed, int count) {
+    std::mt19937_64 rng(seed);
+    std::vector<Chain> chains;
+    for (int i = 0; i < count; ++i) {
+        Chain c;
+        c.axes = 2;
+        c.start = {static_cast<std::int64_t>(rng() % 2000), static_cast<std::int64_t>(rng() % 2000)};
+        const int n = 20 + static_cast<int>(rng() % 80);
+        int code = static_cast<int>(rng() % 8);
+        for (int k = 0; k < n; ++k) {
+            if (rng() % 6 == 0) code = (code + 1 + static_cast<int>(rng() % 7)) % 8;
+            c.steps.push_back(freeman_to_step(code));
+        }
+        chains.push_back(std::move(c));
+    }
+    auto t = write_chains(InputFormat::freeman, chains);
+    EXPECT_TRUE(t.ok());
+    return t.ok() ? *t : std::string();
+}
+
+std::string must_compress(const std::string& input, const CompressOptions& opt) {
+    auto z = compress(input, opt);
+    EXPECT_TRUE(z.ok()) << z.error().message;
+    if (!z.ok()) return {};
+    auto back = decompress(*z);
+    EXPECT_TRUE(back.ok()) << back.error().message;
+    if (back.ok()) {
+        EXPECT_EQ(*back, input);
+    }
+    return *z;
+}
+
+// A + B + A: the second A starts about 18000 steps after the first, more
+// than four blocks of 4096 steps.
+std::string far_repeat() {
+    const std::string a = chains_text(1, 200), b = chains_text(2, 100);
+    return a + b + a;
+}
+
+CompressOptions window_options(int window_log) {
+    CompressOptions opt;
+    opt.block_steps = 4096;
+    opt.window_log = window_log;
+    return opt;
+}
+
+TEST(ContainerWindow, RepeatsFartherThanABlockAreFoundInsideTheWindow) {
+    const std::string input = far_repeat();
+    const std::string none = must_compress(input, window_options(0));
+    const std::string wide = must_compress(input, window_options(15));  // 32768 > 18000
+    ASSERT_FALSE(none.empty());
+    // The repeated third costs almost nothing with the window.
+    EXPECT_LT(wide.size() * 10, none.size() * 8) << wide.size() << " vs " << none.size();
+    auto info = inspect_stream(stz::memory_reader(wide));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_EQ(info->window, 1u << 15);
+    EXPECT_EQ(info->format_version, 2);
+}
+
+TEST(ContainerWindow, NothingIsFoundPastTheDeclaredWindow) {
+    const std::string input = far_repeat();
+    const std::string none = must_compress(input, window_options(0));
+    const std::string narrow = must_compress(input, window_options(13));  // 8192 < 18000
+    ASSERT_FALSE(none.empty());
+    EXPECT_GT(narrow.size() * 10, none.size() * 9) << narrow.size() << " vs " << none.size();
+}
+
+TEST(ContainerWindow, ThreadCountDoesNotChangeTheBytes) {
+    const std::string input = far_repeat();
+    CompressOptions opt = window_options(15);
+    opt.block_steps = 1500;
+    for (int level : {3, 12}) {
+        opt.level = level;
+        opt.threads = 1;
+        const std::string one = must_compress(input, opt);
+        for (unsigned t : {2u, 3u, 8u}) {
+            opt.threads = t;
+            EXPECT_EQ(must_compress(input, opt), one) << "level " << level << ", threads " << t;
+        }
+    }
+}
+
+TEST(ContainerWindow, ABlockUsingAnUndeclaredWindowIsCorrupt) {
+    std::string frame = must_compress(far_repeat(), window_options(15));
+    ASSERT_GT(frame.size(), stz::kFrameHeaderSize);
+    // Header byte 6: axes in bits 0-2, window log in bits 3-7; the header
+    // check made valid again.
+    frame[6] = static_cast<char>(frame[6] & 7);
+    frame[7] = static_cast<char>((stz::hash64(std::string_view(frame).substr(0, 7)) >> 8) & 0xFF);
+    auto r = decompress(frame);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::corrupt) << r.error().message;
+}
+
+TEST(ContainerFrames, FramesBackToBackDecodeAsOneStream) {
+    const std::string x = chains_text(3, 20), y = chains_text(4, 30);
+    const std::string a = must_compress(x, {}), b = must_compress(y, {});
+    auto both = decompress(a + b);
+    ASSERT_TRUE(both.ok()) << both.error().message;
+    EXPECT_EQ(*both, x + y);
+    auto info = inspect_stream(stz::memory_reader(a + b + a));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_EQ(info->frames, 3u);
+    EXPECT_EQ(info->decoded_bytes, 2 * x.size() + y.size());
+    EXPECT_EQ(info->compressed_bytes, 2 * a.size() + b.size());
+    // A second frame cut short is truncated; bytes that are no frame are not.
+    auto cut = decompress(a + b.substr(0, b.size() - 1));
+    ASSERT_FALSE(cut.ok());
+    EXPECT_EQ(cut.error().code, Errc::truncated);
+    auto junk = decompress(a + "junk");
+    ASSERT_FALSE(junk.ok());
+    EXPECT_EQ(junk.error().code, Errc::corrupt);
+    // A version-1 frame may be followed by a version-2 frame.
+    const std::filesystem::path v1 = std::filesystem::path(STEPZIP_SOURCE_DIR) / "tests" / "golden" / "plotter.fc.stz";
+    std::ifstream f(v1, std::ios::binary);
+    const std::string old((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(old[4], 1);
+    auto mixed = decompress(old + a);
+    ASSERT_TRUE(mixed.ok()) << mixed.error().message;
+    auto alone = decompress(old);
+    ASSERT_TRUE(alone.ok());
+    EXPECT_EQ(*mixed, *alone + x);
+}
+
+TEST(ContainerFrames, FixedOverheadIsSmall) {
+    const std::string empty = must_compress("", {});
+    EXPECT_LE(empty.size(), 20u);
+    const std::string thirty = "105 60 66666666666666666666666";
+    ASSERT_EQ(thirty.size(), 30u);
+    EXPECT_LE(must_compress(thirty, {}).size(), 50u);
+}
+
+}  // namespace
+}  // namespace stepzip
