@@ -11,11 +11,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "../src/container/aligned_cut.hpp"
+#include "../src/container/bench_hooks.hpp"
 #include "../src/container/block_codec.hpp"
 #include "../src/container/modeled_block.hpp"
 #include "container_corpus.hpp"
 #include "stepzip/container.hpp"
+#include "stepzip/segment/block_cut.hpp"
 #include "stepzip/segmenter.hpp"
 
 namespace {
@@ -103,15 +104,15 @@ void BM_PayloadLayouts(benchmark::State& state) {
     stz::PayloadVariant v;
     for (auto _ : state) {
         v = {};
-        state.counters["records"] = bits(stz::write_chain_payload(block, p, segs, v));
+        state.counters["records"] = bits(stz::write_chain_payload(block, p, segs));
         v.interleaved = false;
-        state.counters["streams"] = bits(stz::write_chain_payload(block, p, segs, v));
+        state.counters["streams"] = bits(stz::write_chain_payload_variant(block, p, segs, v));
         v = {};
         v.start_from_end = false;
-        state.counters["from_start"] = bits(stz::write_chain_payload(block, p, segs, v));
+        state.counters["from_start"] = bits(stz::write_chain_payload_variant(block, p, segs, v));
         v = {};
         v.octant_delta = false;
-        state.counters["abs_octant"] = bits(stz::write_chain_payload(block, p, segs, v));
+        state.counters["abs_octant"] = bits(stz::write_chain_payload_variant(block, p, segs, v));
         Block heads = block;
         for (auto& c : heads.chains) c.steps.clear();
         std::vector<std::vector<Segment>> none(chains.size());
@@ -152,13 +153,11 @@ void BM_CorpusEncodings(benchmark::State& state) {
         state.SkipWithError(frame.error().message.c_str());
         return;
     }
-    const Profile p = static_cast<Profile>(static_cast<unsigned char>((*frame)[5]));
-    std::vector<std::vector<Segment>> segs(block.chains.size()), aligned(block.chains.size());
-    bool aligned_ok = true;
-    for (std::size_t i = 0; i < block.chains.size(); ++i) {
-        (void)segment_steps(block.chains[i].steps, 2, p, SegmenterKind::greedy, segs[i]);
-        aligned_ok = aligned_ok && stz::cut_preferring_default(block.chains[i].steps, 2, p, aligned[i]);
-    }
+    // Frame header byte 5, bits 0-2: the profile (docs/FORMAT.md 1.1).
+    const Profile p = static_cast<Profile>(static_cast<unsigned char>((*frame)[5]) & 7u);
+    std::vector<std::vector<Segment>> segs, aligned;
+    (void)cut_block(block.chains, 2, p, BlockCut::greedy, segs);
+    const bool aligned_ok = cut_block(block.chains, 2, p, BlockCut::default_phase, aligned).ok();
     for (auto _ : state) {
         auto r = decompress(*frame);
         if (!r || *r != text) state.SkipWithError("round trip failed");
@@ -169,6 +168,10 @@ void BM_CorpusEncodings(benchmark::State& state) {
     if (aligned_ok)
         state.counters["seg_aligned"] = static_cast<double>(stz::write_segment_model(block, p, aligned).size());
     state.counters["step_model"] = static_cast<double>(stz::write_step_model(block).size());
+    // Bytes per field of the segment model (default-phase cut when there is one).
+    const auto costs = stz::segment_model_costs(block, p, aligned_ok ? aligned : segs);
+    for (int f = 0; f < stz::kSegmentModelFields; ++f)
+        state.counters[std::string("seg_") + stz::kSegmentModelFieldNames[f]] = costs[f] / 8;
     state.counters["frame"] = static_cast<double>(frame->size());
     state.SetLabel(std::string(rel) + " " + std::string(profile_name(p)));
 }

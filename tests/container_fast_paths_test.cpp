@@ -3,14 +3,14 @@
 //  * two-axis expansion by division per run (src/interpolate/linear.cpp)
 //    equals the per-step rules of docs/FORMAT.md section 2 for every
 //    (dx, dy, phase) in a range, phases outside the exact range included;
-//  * the two-axis default-phase cut (aligned_cut.cpp) equals the reference
+//  * the two-axis default-phase cut (src/segment/default_phase_cut.cpp) equals the reference
 //    cut that expands every candidate pattern, on random chains drawn by
 //    the profiles' own interpolators and on random walks.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "../src/container/aligned_cut.hpp"
+#include "../src/segment/default_phase_cut.hpp"
 #include "stepzip/interpolate/linear.hpp"
 #include "stepzip/profile.hpp"
 
@@ -122,8 +122,8 @@ TEST(FastAlignedCut, EqualsReferenceCut) {
         for (int round = 0; round < 300; ++round) {
             std::vector<Step> steps = controller_chain(p, rng);
             std::vector<Segment> fast, ref;
-            const bool ok_fast = stz::cut_preferring_default(steps, 2, p, fast);
-            const bool ok_ref = stz::cut_preferring_default_reference(steps, 2, p, ref);
+            const bool ok_fast = cut_preferring_default(steps, 2, p, fast);
+            const bool ok_ref = cut_preferring_default_reference(steps, 2, p, ref);
             ASSERT_EQ(ok_fast, ok_ref);
             ASSERT_EQ(fast, ref) << profile_name(p) << " round " << round;
         }
@@ -135,8 +135,8 @@ TEST(FastAlignedCut, EqualsReferenceCut) {
                 steps.push_back(freeman_to_step(profile_eight_connected(p) ? code : code & 6));
             }
             std::vector<Segment> fast, ref;
-            ASSERT_EQ(stz::cut_preferring_default(steps, 2, p, fast),
-                      stz::cut_preferring_default_reference(steps, 2, p, ref));
+            ASSERT_EQ(cut_preferring_default(steps, 2, p, fast),
+                      cut_preferring_default_reference(steps, 2, p, ref));
             ASSERT_EQ(fast, ref) << profile_name(p) << " walk " << round;
         }
     }

@@ -11,7 +11,7 @@
 #include <random>
 #include <sstream>
 
-#include "../src/container/aligned_cut.hpp"
+#include "../src/segment/default_phase_cut.hpp"
 #include "../src/container/block_codec.hpp"
 #include "../src/container/modeled_block.hpp"
 #include "stepzip/container.hpp"

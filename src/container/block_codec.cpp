@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "bench_hooks.hpp"
 #include "bytes.hpp"
 
 namespace stepzip::stz {
@@ -163,8 +164,13 @@ enum Stream { kLayout, kHeads, kDirs, kLeads, kMinors, kPhases, kStreams };
 }
 
 std::string write_chain_payload(const Block& block, Profile p,
-                                const std::vector<std::vector<Segment>>& segs,
-                                const PayloadVariant& variant) {
+                                const std::vector<std::vector<Segment>>& segs) {
+    return write_chain_payload_variant(block, p, segs, PayloadVariant{});
+}
+
+std::string write_chain_payload_variant(const Block& block, Profile p,
+                                        const std::vector<std::vector<Segment>>& segs,
+                                        const PayloadVariant& variant) {
     const int axes = block.axes;
     std::string streams[kStreams];
     std::string* s[kStreams];

@@ -75,18 +75,11 @@ struct BlockCounts {
 };
 
 /// Serializes the segments of a block's chains into an uncompressed chain
-/// payload (docs/FORMAT.md "Chain payload"). `segs[i]` are chain i's
-/// segments.
-/// Serialization variants measured for docs/FORMAT.md ("Rationale"). Only
-/// the default is the format: the decoder reads nothing else.
-struct PayloadVariant {
-    bool interleaved = true;      ///< one record per segment (else one stream per field)
-    bool start_from_end = true;   ///< chain start relative to the previous chain's end (else start)
-    bool octant_delta = true;     ///< 2D direction as the octant turn from the previous segment
-};
+/// payload (docs/FORMAT.md "Record block payload"). `segs[i]` are chain i's
+/// segments. (Other layouts, for the measurements of docs/FORMAT.md: the
+/// bench hook, bench_hooks.hpp.)
 std::string write_chain_payload(const Block& block, Profile p,
-                                const std::vector<std::vector<Segment>>& segs,
-                                const PayloadVariant& variant = {});
+                                const std::vector<std::vector<Segment>>& segs);
 
 /// Parses an uncompressed chain payload into `out` (chains, layout); when
 /// `expand` is false only counts are gathered. `where` is prefixed to error

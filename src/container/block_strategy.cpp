@@ -4,9 +4,9 @@
 // a modeled block again from the window.
 #include <algorithm>
 
-#include "aligned_cut.hpp"
 #include "encoder.hpp"
 #include "modeled_block.hpp"
+#include "stepzip/segment/block_cut.hpp"
 
 namespace stepzip::stz {
 
@@ -25,27 +25,18 @@ constexpr int kFastStepOrder = 2;
 
 using Cut = std::vector<std::vector<Segment>>;
 
-// Segments every chain of `block` under `p`; errors name the chain and step.
+// Segments every chain of `block` under `p` (cut_block()); errors name the
+// source, the chain and the step.
 Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cut& segs, SegmentStats& stats,
                            std::uint64_t first_chain, const std::string& source) {
-    segs.assign(block.chains.size(), {});
-    for (std::size_t c = 0; c < block.chains.size(); ++c) {
-        auto r = segment_steps(block.chains[c].steps, block.axes, p, kind, segs[c], &stats);
-        if (!r)
-            return make_error(r.error().code, source + ": chain " + std::to_string(first_chain + c + 1) +
-                                                  ": profile " + std::string(profile_name(p)) + ": " +
-                                                  r.error().message);
-    }
+    auto r = cut_block(block.chains, block.axes, p, block_cut_of(kind), segs, &stats, first_chain);
+    if (!r) return make_error(r.error().code, source + ": " + r.error().message);
     return {};
 }
 
-// The default-phase cut of every chain (aligned_cut.hpp); false when a chain
-// has none.
+// The default-phase cut of every chain; false when a chain has none.
 bool aligned_block_cut(const Block& block, Profile p, Cut& out) {
-    out.assign(block.chains.size(), {});
-    for (std::size_t c = 0; c < block.chains.size(); ++c)
-        if (!cut_preferring_default(block.chains[c].steps, block.axes, p, out[c])) return false;
-    return true;
+    return cut_block(block.chains, block.axes, p, BlockCut::default_phase, out).ok();
 }
 
 bool representable(const Block& block, Profile p, int axes) {

@@ -18,6 +18,7 @@
 #include <numeric>
 #include <optional>
 
+#include "bench_hooks.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
 
@@ -272,9 +273,9 @@ public:
     Point start(const Point& want) {
         const std::uint32_t pred = predicted(kStart);
         bool hit = false;
-        if constexpr (!Io::kDecode) io_.field = 0;
+        io_.field(0);
         if (pred != kNoPrediction) hit = code_hit(kStart, want == starts_[pred & ~kStartTag]);
-        if constexpr (!Io::kDecode) io_.field = 1;
+        io_.field(1);
         Point delta{};
         std::int64_t last_v = 0;
         if (hit) {
@@ -320,7 +321,7 @@ public:
             }
         }
         bool hit = false;
-        if constexpr (!Io::kDecode) io_.field = 2;
+        io_.field(2);
         if (pred != kNoPrediction) hit = code_hit(pred == kEndId ? kEnd : kSeg, want_id == pred);
         std::uint32_t id = kEndId;
         bool coded_in_full = false;
@@ -328,12 +329,12 @@ public:
             id = pred;
         } else {
             bool end = false;
-            if constexpr (!Io::kDecode) io_.field = 3;
+            io_.field(3);
             if (pred != kEndId)
                 end = io_.bit(ctx_->end[(at_start_point ? 4 : 0) + cap(static_cast<int>(in_chain), 3)],
                               want_id == kEndId);
             if (!end) {
-                if constexpr (!Io::kDecode) io_.field = 8;
+                io_.field(8);
                 id = code_shape(want_id);
                 if (io_.failed) return fail("bad shape rank");
                 if (id == kNewShape) {
@@ -547,7 +548,7 @@ private:
         const int lclass = cap(bit_length(static_cast<std::uint64_t>(prev_l_)) - 1, 3);
         if (axes_ == 2) {
             const int oct = Io::kDecode ? 0 : kOctantOf[lead * 4 + static_cast<int>(neg)];
-            if constexpr (!Io::kDecode) io_.field = 4;
+            io_.field(4);
         turn = static_cast<int>(code_tree(io_, ctx_->turn[prev_turn_ + 8 * lclass], 3,
                                               static_cast<unsigned>((oct - prev_oct_) & 7)));
             const int code = kCodeOfOctant[(prev_oct_ + turn) & 7];
@@ -563,7 +564,7 @@ private:
             if (lead >= axes_ || (neg >> axes_) != 0) return fail("bad direction");
         }
         const int lctx = cap(bit_length(static_cast<std::uint64_t>(prev_l_)), 11) * 2 + (turn != 0);
-        if constexpr (!Io::kDecode) io_.field = 5;
+        io_.field(5);
         const std::uint64_t l1 = code_uint(io_, ctx_->lead[lctx], static_cast<std::uint64_t>(l - 1));
         if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
         l = static_cast<std::int64_t>(l1) + 1;
@@ -574,7 +575,7 @@ private:
             std::int64_t v = l;
             if (i != lead) {
                 const std::int64_t pred = std::min(l, (l * prev_s_[j] + prev_l_ / 2) / prev_l_);
-                if constexpr (!Io::kDecode) io_.field = 6;
+                io_.field(6);
         const std::int64_t d = code_sint(io_, ctx_->minor[bl], Io::kDecode ? 0 : std::llabs(want->delta[i]) - pred);
                 if (io_.failed) return fail("bad minor total");
                 v = pred + d;
@@ -595,7 +596,7 @@ private:
                 seg.phase[k] = r.lo;
                 continue;
             }
-            if constexpr (!Io::kDecode) io_.field = 7;
+            io_.field(7);
         const std::int64_t d = code_sint(io_, ctx_->phase[bl], Io::kDecode ? 0 : want->phase[k] - def);
             if (io_.failed || !r.contains(def + d)) return fail("phase out of range");
             seg.phase[k] = def + d;
@@ -666,8 +667,13 @@ Result<std::string> get_layout(Cursor& cur, const std::string& where) {
     return unzstd(bytes, static_cast<std::uint32_t>(size), where + " layout");
 }
 
-std::string write_segment_model(const Block& block, Profile p,
-                                const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
+namespace {
+
+// The segment-model payload of `block` cut into `segs`, coded through `io`
+// (EncIo; the bench hook's counting encoder).
+template <class Io>
+std::string segment_model_with(Io& io, const Block& block, Profile p,
+                               const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
     Counts c;
     c.nchains = block.chains.size();
     for (std::size_t i = 0; i < segs.size(); ++i)
@@ -696,8 +702,7 @@ std::string write_segment_model(const Block& block, Profile p,
     }
     put_varint(out, grid);
     put_layout(out, block.layout);
-    EncIo io;
-    SegmentCoder<EncIo> coder(io, p, block.axes);
+    SegmentCoder<Io> coder(io, p, block.axes);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);
     Point ref{};
@@ -718,13 +723,23 @@ std::string write_segment_model(const Block& block, Profile p,
         ref = pos;
     }
     out += io.rc.finish();
-#ifdef STEPZIP_MODEL_STATS
-    {
-        static const char* names[] = {"start-hit", "start", "seg-hit", "end", "dir", "lead", "minor", "phase", "shape"};
-        for (int f = 0; f < 9; ++f) std::fprintf(stderr, "%-10s %10.0f bytes\n", names[f], io.cost[f] / 8);
-        std::fprintf(stderr, "segments %llu steps %llu chains %llu\n", (unsigned long long)c.nsegments, (unsigned long long)c.nsteps, (unsigned long long)c.nchains);
-    }
-#endif
+    return out;
+}
+
+}  // namespace
+
+std::string write_segment_model(const Block& block, Profile p,
+                                const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
+    EncIo io;
+    return segment_model_with(io, block, p, segs, window);
+}
+
+std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, Profile p,
+                                                            const std::vector<std::vector<Segment>>& segs) {
+    CostEncIo io;
+    segment_model_with(io, block, p, segs, nullptr);
+    std::array<double, kSegmentModelFields> out{};
+    std::copy_n(io.cost, kSegmentModelFields, out.begin());
     return out;
 }
 

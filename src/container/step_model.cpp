@@ -144,14 +144,35 @@ public:
     // window's symbols enter the history and the match table in order; the
     // match, `prev` and `turns` stay as at a block's start.
     void prime(const WindowView& window) {
-        for (const auto& b : window) {
-            std::size_t chain = 0;
-            bool at_start = true;
-            for (std::uint8_t sym : b->symbols) {
-                if (at_start && chain < b->starts.size()) note_start(b->starts[chain++]);
-                push(sym);
-                at_start = sym == kEndSymbol;
+        std::vector<std::uint8_t> all;  // the window's symbols, oldest first
+        for (const auto& b : window) all.insert(all.end(), b->symbols.begin(), b->symbols.end());
+        hist_.reserve(all.size() + all.size() / 4);
+        // Each symbol's table line is fetched kAhead symbols before it is
+        // stored: base of the context ahead, rolled as next_base() rolls.
+        constexpr std::size_t kAhead = 16;
+        std::uint64_t ahead = 0;
+        auto roll = [&](std::size_t j) {  // ahead: base before symbol j -> before symbol j + 1
+            if (j >= kMinMatch - 1) ahead -= all[j - (kMinMatch - 1)] * pow9(kMinMatch - 2);
+            ahead = ahead * 9 + all[j];
+        };
+        for (std::size_t j = 0; j < std::min(kAhead, all.size()); ++j) roll(j);
+        const WindowBlock* block = nullptr;
+        std::size_t wb = 0, chain = 0, block_end = 0;
+        bool at_start = true;
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            while (i == block_end) {  // the block this symbol belongs to
+                block = window[wb++].get();
+                block_end += block->symbols.size();
+                chain = 0;
+                at_start = true;
             }
+            if (i + kAhead < all.size()) {
+                table_.prefetch(ahead);
+                roll(i + kAhead);
+            }
+            if (at_start && chain < block->starts.size()) note_start(block->starts[chain++]);
+            push(all[i]);
+            at_start = all[i] == kEndSymbol;
         }
         ptr_ = -1;
         len_ = 0;
@@ -342,9 +363,6 @@ std::string write_step_model(const Block& block, int order, const WindowView* wi
     std::string best;
     for (int order = 1; order <= kMaxStepOrder; ++order) {
         std::string alt = write_step_model_order(block, order, window);
-#ifdef STEPZIP_MODEL_STATS
-        std::fprintf(stderr, "order %d: %zu\n", order, alt.size());
-#endif
         if (alt.empty()) return {};
         if (best.empty() || alt.size() < best.size()) {
             best = std::move(alt);

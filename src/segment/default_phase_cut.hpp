@@ -1,5 +1,6 @@
-// A cut of a chain that prefers default-phase segments (aligned_cut.cpp).
-// Internal to src/container.
+// The default-phase segmenter: a cut of a chain that prefers default-phase
+// segments (default_phase_cut.cpp). Internal to src/segment; other code
+// reaches it through cut_block() (stepzip/segment/block_cut.hpp).
 #pragma once
 
 #include <span>
@@ -9,7 +10,7 @@
 #include "stepzip/segment.hpp"
 #include "stepzip/step.hpp"
 
-namespace stepzip::stz {
+namespace stepzip {
 
 /// Appends to `out` exact segments of `steps` under `p`: at each point the
 /// longest segment drawn at the profile's default phase that is at least half
@@ -25,4 +26,4 @@ bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
 bool cut_preferring_default_reference(std::span<const Step> steps, int axes, Profile p,
                                       std::vector<Segment>& out);
 
-}  // namespace stepzip::stz
+}  // namespace stepzip

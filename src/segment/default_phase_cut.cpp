@@ -1,5 +1,5 @@
-// A second cut of a chain for the segment model (docs/FORMAT.md, encoder
-// behaviour): greedy, but preferring a segment that the profile's own
+// The default-phase segmenter: a cut of a chain for the container's segment
+// model (docs/FORMAT.md, encoder behaviour), greedy, but preferring a segment that the profile's own
 // interpolator draws at its default phase. A stream drawn by a controller
 // (GRBL, Marlin, the seeds' interpolators) is cut at its original vector
 // ends, so its segments repeat and cost no phase; the free-phase greedy cut
@@ -13,15 +13,31 @@
 // depend on the cut.
 #include <algorithm>
 
-#include "../segment/run_word.hpp"
-#include "aligned_cut.hpp"
+#include "default_phase_cut.hpp"
+#include "run_word.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
-namespace stepzip::stz {
+namespace stepzip {
 
 namespace {
 
 constexpr std::int64_t kBackoff = 64;  // how far below the greedy length to look
+
+// The segment taken where `run` (of `valid` steps) is the longest exact
+// segment: the longest one drawn at the default phase (`is_default(k, seg)`
+// for its first k steps) at most kBackoff shorter and at least half as long,
+// else the whole run fitted; its length, 0 when nothing fits.
+template <class IsDefault>
+std::size_t take_segment(Profile p, std::span<const Step> run, int axes, IsDefault is_default, Segment& seg) {
+    const std::size_t valid = run.size();
+    const std::size_t floor = valid > static_cast<std::size_t>(kBackoff) ? valid - kBackoff : 1;
+    for (std::size_t k = valid; k >= floor && k * 2 >= valid; --k)
+        if (is_default(k, seg)) return k;
+    auto fit = fit_segment(p, run, axes);
+    if (!fit) return 0;
+    seg = *fit;
+    return valid;
+}
 
 bool default_exact(Profile p, std::span<const Step> run, int axes, std::vector<Step>& scratch,
                    Segment& seg) {
@@ -97,19 +113,9 @@ bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& 
         if (valid == 0) return false;
         win.load(steps.subspan(i, valid));
         Segment seg;
-        std::size_t take = 0;
-        const std::size_t floor = valid > static_cast<std::size_t>(kBackoff) ? valid - kBackoff : 1;
-        for (std::size_t k = valid; k >= floor && k * 2 >= valid; --k)
-            if (win.default_exact(k, seg)) {
-                take = k;
-                break;
-            }
-        if (take == 0) {
-            auto fit = fit_segment(p, steps.subspan(i, valid), 2);
-            if (!fit) return false;
-            seg = *fit;
-            take = valid;
-        }
+        const std::size_t take = take_segment(
+            p, steps.subspan(i, valid), 2, [&](std::size_t k, Segment& s) { return win.default_exact(k, s); }, seg);
+        if (take == 0) return false;
         out.push_back(seg);
         i += take;
     }
@@ -142,23 +148,14 @@ bool cut_preferring_default_reference(std::span<const Step> steps, int axes, Pro
         }
         if (valid == 0) return false;
         Segment seg;
-        std::size_t take = 0;
-        const std::size_t floor = valid > static_cast<std::size_t>(kBackoff) ? valid - kBackoff : 1;
-        for (std::size_t k = valid; k >= floor && k * 2 >= valid; --k)
-            if (default_exact(p, steps.subspan(i, k), axes, scratch, seg)) {
-                take = k;
-                break;
-            }
-        if (take == 0) {
-            auto fit = fit_segment(p, steps.subspan(i, valid), axes);
-            if (!fit) return false;
-            seg = *fit;
-            take = valid;
-        }
+        const std::size_t take = take_segment(
+            p, steps.subspan(i, valid), axes,
+            [&](std::size_t k, Segment& s) { return default_exact(p, steps.subspan(i, k), axes, scratch, s); }, seg);
+        if (take == 0) return false;
         out.push_back(seg);
         i += take;
     }
     return true;
 }
 
-}  // namespace stepzip::stz
+}  // namespace stepzip

@@ -1,0 +1,31 @@
+// cut_block(): the block-level entry point of the segmenters
+// (stepzip/segment/block_cut.hpp).
+#include "stepzip/segment/block_cut.hpp"
+
+#include <string>
+
+#include "default_phase_cut.hpp"
+
+namespace stepzip {
+
+Result<void> cut_block(std::span<const Chain> chains, int axes, Profile p, BlockCut kind,
+                       std::vector<std::vector<Segment>>& out, SegmentStats* stats, std::uint64_t first_chain) {
+    out.assign(chains.size(), {});
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const std::string chain = "chain " + std::to_string(first_chain + c + 1) + ": profile " +
+                                  std::string(profile_name(p)) + ": ";
+        if (kind == BlockCut::default_phase) {
+            if (!cut_preferring_default(chains[c].steps, axes, p, out[c]))
+                return make_error(Errc::unsupported, chain + "no default-phase cut");
+            continue;
+        }
+        const SegmenterKind k = kind == BlockCut::optimal ? SegmenterKind::optimal
+                                : kind == BlockCut::patent ? SegmenterKind::patent
+                                                           : SegmenterKind::greedy;
+        if (auto r = segment_steps(chains[c].steps, axes, p, k, out[c], stats); !r)
+            return make_error(r.error().code, chain + r.error().message);
+    }
+    return {};
+}
+
+}  // namespace stepzip
