@@ -100,6 +100,59 @@ files = {
                                 struct.unpack_from('<I', good, 16)[0] - 1)
         + good[20:end - 5] + good[end - 4:])),
 }
+
+# Version 2 (docs/FORMAT.md 1.1-1.8), from tests/golden/v2/plotter.fc.stz:
+# one segment-model block, window 2^22 declared.
+good2 = open(os.path.join(here, '..', 'golden', 'v2', 'plotter.fc.stz'), 'rb').read()
+
+
+def header2(frame, b5=None, b6=None):
+    """`frame` with header bytes 5 and 6 replaced and the header check redone."""
+    f = bytearray(frame)
+    if b5 is not None:
+        f[5] = b5
+    if b6 is not None:
+        f[6] = b6
+    f[7] = (xxh64(bytes(f[:7])) >> 8) & 0xFF
+    return bytes(f)
+
+
+def varint_at(frame, at):
+    v, shift = 0, 0
+    while True:
+        b = frame[at]
+        at += 1
+        v |= (b & 0x7F) << shift
+        shift += 7
+        if b < 0x80:
+            return v, at
+
+
+def block2(frame, at=8):
+    """(payload end, checksum end) of the version-2 modeled block at `at`."""
+    csize, p = varint_at(frame, at + 1)
+    return p + csize, p + csize + 4
+
+
+def reseal2(frame, at=8):
+    end, _ = block2(frame, at)
+    return frame[:end] + struct.pack('<I', check32(frame[at:end])) + frame[end + 4:]
+
+
+assert good2[4] == 2 and good2[8] & 7 == 3, 'v2/plotter.fc.stz should hold a segment-model block'
+assert check32(good2[8:block2(good2)[0]]) == struct.unpack_from('<I', good2, block2(good2)[0])[0]
+end2 = block2(good2)[1]  # offset of the end mark
+files.update({
+    'v2_header_check': ('checksum', edit(good2, 6, good2[6] ^ 0x08)),
+    'v2_reserved_descriptor': ('reserved bits', header2(good2, b5=good2[5] | 0x80)),
+    'v2_window_over_limit': ('limit', header2(good2, b6=(good2[6] & 7) | (24 << 3))),
+    'v2_window_undeclared': ('corrupt', reseal2(edit(header2(good2, b6=good2[6] & 7), 8, good2[8] | 0x20))),
+    'v2_reserved_block_flags': ('reserved bits', edit(good2, 8, good2[8] | 0x40)),
+    'v2_trailer_flags': ('reserved bits', edit(good2, len(good2) - 9, 2)),
+    'v2_content_checksum': ('checksum', edit(good2, len(good2) - 1, good2[-1] ^ 1)),
+    'v2_partial_second_magic': ('corrupt', good2 + good2[:3]),
+    'v2_truncated_second_frame': ('truncated', good2 + good2[:end2]),
+})
 for name, (code, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n')
