@@ -18,8 +18,9 @@
 namespace stepzip {
 namespace {
 
-// Plotter-like chains: runs of one direction with occasional turns.
-std::string chains_text(std::uint64_t seed, int count) {
+// Plotter-like chains: runs of one direction with occasional turns; or,
+// `noisy`, a random Freeman code at every step (the step model codes them).
+std::string chains_text(std::uint64_t seed, int count, bool noisy = false) {
     std::mt19937_64 rng(seed);
     std::vector<Chain> chains;
     for (int i = 0; i < count; ++i) {
@@ -29,7 +30,7 @@ std::string chains_text(std::uint64_t seed, int count) {
         const int n = 20 + static_cast<int>(rng() % 80);
         int code = static_cast<int>(rng() % 8);
         for (int k = 0; k < n; ++k) {
-            if (rng() % 6 == 0) code = (code + 1 + static_cast<int>(rng() % 7)) % 8;
+            if (noisy || rng() % 6 == 0) code = (code + 1 + static_cast<int>(rng() % 7)) % 8;
             c.steps.push_back(freeman_to_step(code));
         }
         chains.push_back(std::move(c));
@@ -84,6 +85,28 @@ TEST(ContainerWindow, NothingIsFoundPastTheDeclaredWindow) {
     const std::string narrow = must_compress(input, window_options(13));  // 8192 < 18000
     ASSERT_FALSE(none.empty());
     EXPECT_GT(narrow.size() * 10, none.size() * 9) << narrow.size() << " vs " << none.size();
+}
+
+TEST(ContainerWindow, ALongStreamOfRepeatsDecodesAsTheWindowSays) {
+    // Twenty pieces of about 2400 steps of noisy chains, each a copy of the one two places
+    // before it or a new one: repeats lie within the window (2^13), and the
+    // stream is many windows long, so the decoder's history drops what
+    // left the window many times over.
+    std::vector<std::string> fresh;
+    for (int i = 0; i < 8; ++i) fresh.push_back(chains_text(100 + static_cast<std::uint64_t>(i), 40, true));
+    std::string input;
+    for (int i = 0; i < 20; ++i) input += fresh[static_cast<std::size_t>(i % 2 == 0 ? (i / 4) % 8 : i % 8)];
+    CompressOptions opt;
+    opt.block_steps = 2048;
+    opt.window_log = 0;
+    const std::string none = must_compress(input, opt);
+    opt.window_log = 13;
+    const std::string windowed = must_compress(input, opt);
+    ASSERT_FALSE(none.empty());
+    EXPECT_LT(windowed.size() * 10, none.size() * 9) << windowed.size() << " vs " << none.size();
+    auto info = inspect_stream(stz::memory_reader(windowed));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_GT(info->step_model_blocks, 10u);
 }
 
 TEST(ContainerWindow, ThreadCountDoesNotChangeTheBytes) {

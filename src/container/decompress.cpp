@@ -126,6 +126,7 @@ public:
         // With a window, every chain block is decoded in full: later blocks
         // start from its content.
         expand_ = out_ != nullptr || hdr_.window() != 0;
+        if (hdr_.window() != 0 && hdr_.axes == 2) steps_ = make_step_history();
         if (out_) writer_ = std::make_unique<BlockWriter>(hdr_.format);
         state_ = XXH64_createState();
         XXH64_reset(state_, 0);
@@ -225,6 +226,13 @@ private:
             if (!*more) return {};
             const std::string_view payload = std::string_view(rec_).substr(b.header, b.csize);
             auto contribution = std::make_shared<WindowBlock>();
+            const WindowView view = window_.view();
+            if (steps_) {
+                const std::uint64_t end = step_history_end(*steps_);
+                contribution->first_symbol = end;
+                step_history_begin_block(*steps_, view.empty() ? end : view.front()->first_symbol, window_.limit());
+            }
+            bool on_history = false;  // the block's symbols went into steps_ as it was decoded
             rendered.clear();
             ++info_.blocks;
             if (b.type == kRaw) {
@@ -247,7 +255,6 @@ private:
                 block.continues = b.flags & kFlagContinues;
                 block.open = b.flags & kFlagOpen;
                 BlockCounts counts;
-                const WindowView view = (b.flags & kFlagWindow) ? window_.view() : WindowView();
                 const WindowView* w = (b.flags & kFlagWindow) ? &view : nullptr;
                 const std::string what = where_ + " payload";
                 Result<void> r;
@@ -259,7 +266,9 @@ private:
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                            window_.limit() ? &contribution->items : nullptr);
                 } else {
-                    r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version);
+                    on_history = w && steps_;
+                    r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,
+                                        steps_.get());
                 }
                 if (!r) return std::move(r).error();
                 if (b.type == kSegmentModel) ++info_.segment_model_blocks;
@@ -270,7 +279,13 @@ private:
                 if (block.continues && chain_open_ && counts.chains > 0) --info_.chains;
                 chain_open_ = block.open;
                 contribution->weight = counts.steps + counts.chains;
-                if (window_.limit()) add_steps(*contribution, block);
+                if (steps_ && !on_history) {
+                    add_steps(*contribution, block);
+                    step_history_add(*steps_, *contribution);
+                }
+                // The history holds the symbols: the window keeps their place only.
+                contribution->symbols = {};
+                contribution->starts = {};
                 if (out_) {
                     if (auto rr = writer_->write(block, rendered); !rr)
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
@@ -382,6 +397,7 @@ private:
     std::uint64_t frame_at_ = 0;
     FrameInfo info_;
     Window window_;
+    StepHistoryPtr steps_;  // frames with a window on two axes
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;

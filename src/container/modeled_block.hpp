@@ -3,6 +3,7 @@
 // coder, instead of zstd. Internal to src/container.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,11 +36,31 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
                                 const WindowView* window = nullptr, SegmentItems* items = nullptr);
+/// The decoder's step-model history of a frame with a window: the symbols of
+/// every block, from the window's start on, and the match table over them.
+/// A block flagged `window` decodes on it (O(1) per symbol) instead of
+/// rebuilding its window; the result is the same.
+struct StepHistory;
+struct StepHistoryDeleter {
+    void operator()(StepHistory* h) const;
+};
+using StepHistoryPtr = std::unique_ptr<StepHistory, StepHistoryDeleter>;
+StepHistoryPtr make_step_history();
+/// Appends a block's contribution (symbols and chain starts).
+void step_history_add(StepHistory& h, const WindowBlock& b);
+/// Before each block: `window_start` is the frame position of the first
+/// symbol of the block's window, `limit` the frame's window.
+void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::uint64_t limit);
+/// Frame position after the last symbol.
+std::uint64_t step_history_end(const StepHistory& h);
+
 /// `version`: the frame's format version (version 1 step models predict no
-/// chain start).
+/// chain start). `running`: with `window`, the frame's history to decode on
+/// (it then holds the block's symbols too) instead of rebuilding the window.
 Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
                              BlockCounts& counts, const std::string& where,
-                             const WindowView* window = nullptr, int version = kFormatVersion);
+                             const WindowView* window = nullptr, int version = kFormatVersion,
+                             StepHistory* running = nullptr);
 
 /// Layout field shared by both models: varint decoded size, varint stored
 /// size, stored bytes (verbatim when the sizes are equal, else one zstd frame).

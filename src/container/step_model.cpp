@@ -47,6 +47,8 @@ struct Counts {
     std::uint64_t nchains = 0, nsteps = 0, seen_steps = 0;
 };
 
+}  // namespace
+
 // The match table: the last kMinMatch symbols (each 0..8, packed base 9 in
 // 39 bits) -> the history position that followed them most recently. Open
 // addressing, one 64-bit slot per entry (key << 25 | position; a position
@@ -132,48 +134,126 @@ static_assert(kMinMatch == 12);  // 9^12 < 2^39: key and position share one 64-b
 
 constexpr std::uint64_t pow9(int k) { return k == 0 ? 1 : 9 * pow9(k - 1); }
 
+// The step model's history (docs/FORMAT.md 1.6, 1.8): symbols, the match
+// table over them and the recorded chain starts. A coder owns one for a
+// block (and its window, rebuilt); the decoder keeps one across the blocks
+// of a frame (make_step_history()), so that a block flagged `window` needs
+// no rebuild: a table position before the window's start (plus kMinMatch)
+// counts as absent, which is what the table rebuilt from the window alone
+// answers, since the table keeps the most recent position of each context.
+struct StepHistory {
+    std::vector<std::uint8_t> hist;
+    std::uint64_t context = 0;  // last kMinMatch symbols, base 9
+    MatchTable table;           // last kMinMatch symbols -> next position
+    std::vector<std::uint32_t> start_pos;  // position of each chain's first symbol
+    std::vector<Point> start_delta;        // and its start delta
+    std::uint64_t base = 0;                // frame position of hist[0] (decoder)
+    std::uint32_t min_valid = 1;           // smallest table position a lookup may return
+
+    // The first kMinMatch - 1 symbols of the context the next symbol will
+    // complete (base 9).
+    std::uint64_t next_base() const {
+        const std::size_t n = hist.size();
+        return n >= kMinMatch ? context - hist[n - kMinMatch] * pow9(kMinMatch - 1) : context;
+    }
+    // Appends a symbol; returns the position that followed its context most
+    // recently (0: none), then records the new one.
+    std::uint32_t append(int sym) {
+        const std::uint64_t b = next_base();
+        hist.push_back(static_cast<std::uint8_t>(sym));
+        const std::size_t n = hist.size();
+        context = b * 9 + static_cast<unsigned>(sym);
+        if (n < kMinMatch) return 0;
+        return table.exchange(b, static_cast<unsigned>(sym), static_cast<std::uint32_t>(n));
+    }
+    void note_start(const Point& d) {
+        start_pos.push_back(static_cast<std::uint32_t>(hist.size()));
+        start_delta.push_back(d);
+    }
+    // Appends a block's contribution (its symbols, and its chain starts at
+    // the chains' first symbols). Each symbol's table line is fetched kAhead
+    // symbols before it is stored.
+    void add(const WindowBlock& b) {
+        const std::vector<std::uint8_t>& all = b.symbols;
+        constexpr std::size_t kAhead = 16;
+        // `ahead`: the base next_base() will return kAhead symbols later.
+        std::uint64_t ahead = next_base();
+        std::size_t n = hist.size();
+        auto roll = [&](std::size_t j) {  // symbol j of the block enters `ahead`
+            const std::size_t pos = n + j;  // its position in hist
+            if (pos >= kMinMatch - 1) {
+                const std::size_t out = pos - (kMinMatch - 1);
+                ahead -= (out >= n ? all[out - n] : hist[out]) * pow9(kMinMatch - 2);
+            }
+            ahead = ahead * 9 + all[j];
+        };
+        for (std::size_t j = 0; j < std::min(kAhead, all.size()); ++j) roll(j);
+        std::size_t chain = 0;
+        bool at_start = true;
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            if (i + kAhead < all.size()) {
+                table.prefetch(ahead);
+                roll(i + kAhead);
+            }
+            if (at_start && chain < b.starts.size()) note_start(b.starts[chain++]);
+            append(all[i]);
+            at_start = all[i] == kEndSymbol;
+        }
+    }
+    // Decoder, before each block: positions before `window_start` (a frame
+    // position) are outside the window; a dead prefix longer than the window
+    // `limit` (at most 2^22) is dropped and the table rebuilt from the window,
+    // so that memory stays O(window) and positions below 2^25; the rebuild
+    // costs one more append per symbol at most.
+    void begin_block(std::uint64_t window_start, std::uint64_t limit) {
+        const std::uint64_t max_dead = std::min<std::uint64_t>(limit, std::uint64_t{1} << 22);
+        if (window_start - base > max_dead) {
+            const std::size_t drop = static_cast<std::size_t>(window_start - base);
+            WindowBlock kept;
+            kept.symbols.assign(hist.begin() + static_cast<std::ptrdiff_t>(drop), hist.end());
+            bool at_start = true;
+            std::size_t k = std::lower_bound(start_pos.begin(), start_pos.end(), static_cast<std::uint32_t>(drop)) -
+                            start_pos.begin();
+            for (std::size_t i = 0; i < kept.symbols.size(); ++i) {
+                // the starts of the kept chains, in order (a chain cut by the
+                // window start has none, as when the window is rebuilt)
+                if (at_start && k < start_pos.size() && start_pos[k] == drop + i) kept.starts.push_back(start_delta[k++]);
+                else if (at_start) kept.starts.push_back(Point{});
+                at_start = kept.symbols[i] == kEndSymbol;
+            }
+            *this = StepHistory{};
+            base = window_start;
+            add(kept);
+        }
+        min_valid = static_cast<std::uint32_t>(window_start - base) + kMinMatch;
+    }
+};
+
+void StepHistoryDeleter::operator()(StepHistory* h) const { delete h; }
+StepHistoryPtr make_step_history() { return StepHistoryPtr(new StepHistory); }
+void step_history_add(StepHistory& h, const WindowBlock& b) { h.add(b); }
+void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::uint64_t limit) {
+    h.begin_block(window_start, limit);
+}
+std::uint64_t step_history_end(const StepHistory& h) { return h.base + h.hist.size(); }
+
+namespace {
+
 template <class Io>
 class StepCoder {
 public:
     // `predict_starts`: version 2 (chain starts predicted by the match).
-    StepCoder(Io& io, int order, bool predict_starts)
+    // `shared`: the decoder's history of the frame (else the coder's own).
+    StepCoder(Io& io, int order, bool predict_starts, StepHistory* shared = nullptr)
         : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1),
-          predict_starts_(predict_starts) {}
+          predict_starts_(predict_starts), own_(shared ? nullptr : std::make_unique<StepHistory>()),
+          h_(shared ? *shared : *own_) {}
 
     // Starts the block from the window (docs/FORMAT.md "Window"): the
     // window's symbols enter the history and the match table in order; the
     // match, `prev` and `turns` stay as at a block's start.
     void prime(const WindowView& window) {
-        std::vector<std::uint8_t> all;  // the window's symbols, oldest first
-        for (const auto& b : window) all.insert(all.end(), b->symbols.begin(), b->symbols.end());
-        hist_.reserve(all.size() + all.size() / 4);
-        // Each symbol's table line is fetched kAhead symbols before it is
-        // stored: base of the context ahead, rolled as next_base() rolls.
-        constexpr std::size_t kAhead = 16;
-        std::uint64_t ahead = 0;
-        auto roll = [&](std::size_t j) {  // ahead: base before symbol j -> before symbol j + 1
-            if (j >= kMinMatch - 1) ahead -= all[j - (kMinMatch - 1)] * pow9(kMinMatch - 2);
-            ahead = ahead * 9 + all[j];
-        };
-        for (std::size_t j = 0; j < std::min(kAhead, all.size()); ++j) roll(j);
-        const WindowBlock* block = nullptr;
-        std::size_t wb = 0, chain = 0, block_end = 0;
-        bool at_start = true;
-        for (std::size_t i = 0; i < all.size(); ++i) {
-            while (i == block_end) {  // the block this symbol belongs to
-                block = window[wb++].get();
-                block_end += block->symbols.size();
-                chain = 0;
-                at_start = true;
-            }
-            if (i + kAhead < all.size()) {
-                table_.prefetch(ahead);
-                roll(i + kAhead);
-            }
-            if (at_start && chain < block->starts.size()) note_start(block->starts[chain++]);
-            push(all[i]);
-            at_start = all[i] == kEndSymbol;
-        }
+        for (const auto& b : window) h_.add(*b);
         ptr_ = -1;
         len_ = 0;
     }
@@ -183,9 +263,10 @@ public:
         bool hit = false;
         if (predict_starts_ && ptr_ >= 0) {
             // The match predicts a chain start when it points at one.
-            const auto it = std::lower_bound(start_pos_.begin(), start_pos_.end(), static_cast<std::uint32_t>(ptr_));
-            if (it != start_pos_.end() && *it == static_cast<std::uint32_t>(ptr_)) {
-                const Point& pred = start_delta_[static_cast<std::size_t>(it - start_pos_.begin())];
+            const auto& pos = h_.start_pos;
+            const auto it = std::lower_bound(pos.begin(), pos.end(), static_cast<std::uint32_t>(ptr_));
+            if (it != pos.end() && *it == static_cast<std::uint32_t>(ptr_)) {
+                const Point& pred = h_.start_delta[static_cast<std::size_t>(it - pos.begin())];
                 hit = io_.bit(ctx_->start_hit[len_bucket(len_)], want == pred);
                 if (hit) d = pred;
             }
@@ -194,7 +275,7 @@ public:
             for (int i = 0; i < 2; ++i) {
                 d[i] = code_sint(io_, ctx_->start[i], want[i]);  // the rebuilt start is range-checked
             }
-        if (predict_starts_) note_start(d);
+        if (predict_starts_) h_.note_start(d);
         return d;
     }
 
@@ -234,11 +315,11 @@ private:
     [[gnu::always_inline]] int code_symbol(I& io, int want, bool at_start_point, bool first, const Counts& c) {
         int sym;
         // The table line this symbol will update, fetched while it is decoded.
-        if (hist_.size() + 1 >= kMinMatch) table_.prefetch(next_base());
+        if (h_.hist.size() + 1 >= kMinMatch) h_.table.prefetch(h_.next_base());
         if (c.seen_steps == c.nsteps) {
             sym = kEndSymbol;  // forced: no bits
         } else {
-            const int pred = ptr_ >= 0 ? hist_[static_cast<std::size_t>(ptr_)] : -1;
+            const int pred = ptr_ >= 0 ? h_.hist[static_cast<std::size_t>(ptr_)] : -1;
             bool hit = false;
             if (pred >= 0) hit = io.bit(ctx_->hit[len_bucket(len_)][pred == kEndSymbol], want == pred);
             if (hit) {
@@ -264,47 +345,26 @@ private:
         return sym;
     }
 
-    // The first kMinMatch - 1 symbols of the context the next symbol will
-    // complete (base 9), and whether a match is looked up after it.
-    std::uint64_t next_base() const {
-        const std::size_t n = hist_.size();
-        return n >= kMinMatch ? context_ - hist_[n - kMinMatch] * pow9(kMinMatch - 1) : context_;
-    }
-
     void push(int sym) {
-        if (ptr_ >= 0 && hist_[static_cast<std::size_t>(ptr_)] == sym) {
+        if (ptr_ >= 0 && h_.hist[static_cast<std::size_t>(ptr_)] == sym) {
             ++len_;
             ++ptr_;
         } else {
             len_ = 0;
             ptr_ = -1;
         }
-        const std::uint64_t base = next_base();
-        hist_.push_back(static_cast<std::uint8_t>(sym));
-        const std::size_t n = hist_.size();
-        context_ = base * 9 + static_cast<unsigned>(sym);
-        if (n >= kMinMatch) {
-            // The most recent earlier position preceded by the same kMinMatch symbols.
-            const std::uint32_t before =
-                table_.exchange(base, static_cast<unsigned>(sym), static_cast<std::uint32_t>(n));
-            if (before != 0 && ptr_ < 0) ptr_ = before;
-        }
-    }
-
-    void note_start(const Point& d) {
-        start_pos_.push_back(static_cast<std::uint32_t>(hist_.size()));
-        start_delta_.push_back(d);
+        // The most recent earlier position preceded by the same kMinMatch
+        // symbols, inside the window.
+        const std::uint32_t before = h_.append(sym);
+        if (before >= h_.min_valid && before != 0 && ptr_ < 0) ptr_ = before;
     }
 
     Io& io_;
     std::unique_ptr<StepContexts> ctx_;
     unsigned mask_;
     bool predict_starts_;
-    std::vector<std::uint32_t> start_pos_;  // history position of each chain's first symbol
-    std::vector<Point> start_delta_;        // and its start delta
-    MatchTable table_;          // last kMinMatch symbols -> next position
-    std::uint64_t context_ = 0;  // last kMinMatch symbols, base 9
-    std::vector<std::uint8_t> hist_;
+    std::unique_ptr<StepHistory> own_;
+    StepHistory& h_;
     std::int64_t ptr_ = -1;
     std::uint64_t len_ = 0;
     int prev_ = 0;
@@ -374,7 +434,7 @@ std::string write_step_model(const Block& block, int order, const WindowView* wi
 
 Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
                              BlockCounts& counts, const std::string& where, const WindowView* window,
-                             int version) {
+                             int version, StepHistory* running) {
     Cursor cur(payload);
     if (axes != 2) return make_error(Errc::corrupt, where + " byte 0: step-model block on " +
                                                         std::to_string(axes) + " axes");
@@ -390,8 +450,8 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    StepCoder<DecIo> coder(io, static_cast<int>(order), version >= 2);
-    if (window) coder.prime(*window);
+    StepCoder<DecIo> coder(io, static_cast<int>(order), version >= 2, window ? running : nullptr);
+    if (window && !running) coder.prime(*window);
     if (expand) {
         out.axes = axes;
         out.chains.clear();
