@@ -3,12 +3,15 @@
 // The byte layout is specified in docs/FORMAT.md (format version
 // kFormatVersion, independent of the library version). Compression parses the
 // input into blocks (document.hpp), cuts each chain into exact segments
-// (segmenter.hpp), serializes them, compresses with zstd, and proves the
+// (segmenter.hpp), codes each block by the models that win (a block may start
+// from the window of earlier blocks the frame declares), and proves the
 // round trip of every block before writing it. Decompression reverses the
-// stages and checks the XXH64 of the decoded bytes.
+// stages and checks the XXH64 of the decoded bytes; frames back to back
+// decode as one stream.
 //
-// Memory is bounded by the block size times the number of threads, not by
-// the input size: both directions stream one block at a time.
+// Memory is bounded by the block size times the number of threads plus the
+// window (at most 2^kMaxWindowLog steps + chains), not by the input size:
+// both directions stream one block at a time.
 #pragma once
 
 #include <cstddef>
