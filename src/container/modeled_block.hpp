@@ -62,6 +62,25 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
                              const WindowView* window = nullptr, int version = kFormatVersion,
                              StepHistory* running = nullptr);
 
+/// Decoder, both models: when `expand`, `out` becomes an empty block of
+/// `axes` axes with `layout`.
+void start_output(Block& out, bool expand, int axes, std::string&& layout);
+/// Decoder, both models: a chain's start, `ref` + `delta` modulo 2^64 on
+/// each axis; false when a coordinate lies beyond the start limit
+/// (docs/FORMAT.md section 3).
+bool rebuild_start(const Point& ref, const Point& delta, int axes, Point& start);
+/// Decoder, both models: the next chain's start delta `d`, decoded by
+/// `coder` (reading through `io`), and its start from `ref` into `chain`;
+/// an error message, or nullptr.
+template <class Coder, class Io>
+const char* next_chain_start(Coder& coder, Io& io, const Point& ref, int axes, Chain& chain, Point& d) {
+    chain.axes = axes;
+    d = coder.start(Point{});
+    if (io.failed || io.rc.overrun()) return "bad chain start";
+    if (!rebuild_start(ref, d, axes, chain.start)) return "chain start out of range";
+    return nullptr;
+}
+
 /// Layout field shared by both models: varint decoded size, varint stored
 /// size, stored bytes (verbatim when the sizes are equal, else one zstd frame).
 void put_layout(std::string& out, std::string_view layout);

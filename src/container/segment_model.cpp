@@ -654,6 +654,21 @@ void put_layout(std::string& out, std::string_view layout) {
     }
 }
 
+void start_output(Block& out, bool expand, int axes, std::string&& layout) {
+    if (!expand) return;
+    out.axes = axes;
+    out.chains.clear();
+    out.layout = std::move(layout);
+}
+
+bool rebuild_start(const Point& ref, const Point& delta, int axes, Point& start) {
+    for (int a = 0; a < axes; ++a) {
+        start[a] = stz::wrap_add(ref[a], delta[a]);
+        if (!stz::start_in_range(start[a])) return false;
+    }
+    return true;
+}
+
 Result<std::string> get_layout(Cursor& cur, const std::string& where) {
     std::uint64_t size, stored;
     if (!cur.varint(size) || !cur.varint(stored))
@@ -764,11 +779,7 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);
     if (items) *items = SegmentItems{};
-    if (expand) {
-        out.axes = axes;
-        out.chains.clear();
-        out.layout = std::move(*layout);
-    }
+    start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const std::string& what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " +
                                              (coder.error().empty() ? what : coder.error()));
@@ -776,13 +787,8 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     Point ref{};
     for (std::uint64_t i = 0; i < c.nchains; ++i) {
         Chain chain;
-        chain.axes = axes;
-        const Point d = coder.start(Point{});
-        if (io.failed || io.rc.overrun()) return fail("bad chain start");
-        for (int a = 0; a < axes; ++a) {
-            chain.start[a] = stz::wrap_add(ref[a], d[a]);
-            if (!stz::start_in_range(chain.start[a])) return fail("chain start out of range");
-        }
+        Point d;
+        if (const char* e = next_chain_start(coder, io, ref, axes, chain, d)) return fail(e);
         if (items) {
             items->starts.push_back(d);
             items->counts.push_back(0);

@@ -452,24 +452,15 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     DecIo io(payload.substr(base));
     StepCoder<DecIo> coder(io, static_cast<int>(order), version >= 2, window ? running : nullptr);
     if (window && !running) coder.prime(*window);
-    if (expand) {
-        out.axes = axes;
-        out.chains.clear();
-        out.layout = std::move(*layout);
-    }
+    start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const std::string& what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
     };
     Point ref{};
     for (std::uint64_t i = 0; i < c.nchains; ++i) {
         Chain chain;
-        chain.axes = axes;
-        const Point d = coder.start(Point{});
-        if (io.failed || io.rc.overrun()) return fail("bad chain start");
-        for (int a = 0; a < 2; ++a) {
-            chain.start[a] = stz::wrap_add(ref[a], d[a]);
-            if (!stz::start_in_range(chain.start[a])) return fail("chain start out of range");
-        }
+        Point d;
+        if (const char* e = next_chain_start(coder, io, ref, 2, chain, d)) return fail(e);
         std::int64_t x = chain.start[0], y = chain.start[1];
         if (!coder.decode_chain(c, x, y, expand ? &chain.steps : nullptr) || io.failed)
             return fail("bad step");
