@@ -288,6 +288,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     if (s.window_log != 0) {
         auto w = std::make_shared<WindowBlock>();
         w->weight = job.steps + block.chains.size();
+        w->first_type = type;
         if (type != kRaw) add_steps(*w, block);
         job.contribution = std::move(w);
     }
@@ -303,6 +304,12 @@ bool has_symbols(const WindowView& window) {
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    // Below the thorough levels a segment-model block whose window holds
+    // segment-model blocks only (as the first pass chose) stays one: the
+    // segment model sees the window's content too.
+    if (!s.thorough && job.type == kSegmentModel &&
+        std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; }))
+        return;
     int order = job.type == kStepModel ? job.order : s.thorough ? 0 : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
     if (model.empty() || model.size() > kMaxBlockPayload) return;

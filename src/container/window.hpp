@@ -30,6 +30,7 @@ struct WindowBlock {
     std::vector<std::uint8_t> symbols;  ///< two-axis chain blocks: Freeman codes, 8 after each chain
     std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
     std::uint64_t first_symbol = 0;     ///< decoder: frame position of its first symbol
+    unsigned first_type = 0;            ///< encoder: the block type its first pass chose
 };
 
 /// The blocks inside the window, oldest first.
