@@ -15,6 +15,7 @@
 
 #include "../segment/run_word.hpp"
 #include "aligned_cut.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
 namespace stepzip::stz {
