@@ -44,6 +44,8 @@ public:
     void ends(std::size_t s, std::size_t lim, F&& f);
 
 private:
+    std::int64_t longest_other(std::span<const Step> steps);
+
     Profile profile_;
     int axes_;
     std::optional<TwoAxisGreedy> two_;  // linear profiles on two axes
@@ -52,6 +54,18 @@ private:
     std::span<const Step> steps_;       // prepared for ends()
     std::vector<std::uint32_t> run_end_;  // end of the run of identical steps at each position
 };
+
+// The two-axis path first: it is the hot one, and these two calls stay inline
+// in the drivers' loops.
+inline std::int64_t ProfileCut::longest(std::span<const Step> steps) {
+    if (two_ && !steps.empty()) return two_->longest(steps);
+    return longest_other(steps);
+}
+
+inline std::optional<Segment> ProfileCut::fit(std::span<const Step> steps, std::int64_t m) const {
+    if (two_) return two_->fit(m);
+    return fit_segment(profile_, steps.first(static_cast<std::size_t>(m)), axes_);
+}
 
 template <class F>
 void ProfileCut::ends(std::size_t s, std::size_t lim, F&& f) {

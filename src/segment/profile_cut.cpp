@@ -12,20 +12,14 @@ ProfileCut::ProfileCut(Profile p, int axes) : profile_(p), axes_(axes) {
     if (axes == 2) two_.emplace(p);
 }
 
-std::int64_t ProfileCut::longest(std::span<const Step> steps) {
+std::int64_t ProfileCut::longest_other(std::span<const Step> steps) {
     if (steps.empty()) return 0;
-    if (two_) return two_->longest(steps);
     if (runs_) return longest_exact_prefix(*runs_, steps);
     PatentRecognizer& rec = *patent_;
     rec.reset();
     for (std::size_t i = 0; i < steps.size() && rec.can_extend(steps[i]); ++i)
         if (!rec.extend(steps[i])) break;
     return std::max<std::int64_t>(rec.longest_valid(), 1);
-}
-
-std::optional<Segment> ProfileCut::fit(std::span<const Step> steps, std::int64_t m) const {
-    if (two_) return two_->fit(m);
-    return fit_segment(profile_, steps.first(static_cast<std::size_t>(m)), axes_);
 }
 
 std::int64_t ProfileCut::window() const noexcept {
