@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <limits>
 
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 
 namespace stepzip::stz {
 

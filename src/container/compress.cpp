@@ -12,7 +12,7 @@
 #include "aligned_cut.hpp"
 #include "block_codec.hpp"
 #include "modeled_block.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 #include "memory_io.hpp"
 #include "stepzip/container.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "block_codec.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 
 namespace stepzip::stz {
 

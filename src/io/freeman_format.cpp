@@ -67,7 +67,7 @@ private:
     void flush_verbatim() {
         if (verb_.empty()) return;
         out_.push_back(static_cast<char>(kVerbatim));
-        put_bytes(out_, verb_);
+        wire::put_sized(out_, verb_);
         verb_.clear();
     }
     std::string out_;
@@ -174,11 +174,11 @@ void FreemanParser::emit_head() {
     if (line_codes_ != 0 && ws2_ != " ") flags |= kWs2;
     o.push_back(static_cast<char>(kHead));
     o.push_back(static_cast<char>(flags));
-    if (flags & kLead) put_bytes(o, lead_);
+    if (flags & kLead) wire::put_sized(o, lead_);
     if (flags & kX) put_spelling(o, xs);
-    if (flags & kWs1) put_bytes(o, ws1_);
+    if (flags & kWs1) wire::put_sized(o, ws1_);
     if (flags & kY) put_spelling(o, ys);
-    if (flags & kWs2) put_bytes(o, ws2_);
+    if (flags & kWs2) wire::put_sized(o, ws2_);
     head_emitted_ = true;
 }
 
@@ -550,7 +550,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
     LayoutCursor cur(b.layout);
     while (!cur.done()) {
         std::uint8_t op = 0;
-        cur.byte(op);
+        cur.u8(op);
         switch (op) {
             case kNop:
                 break;
@@ -569,19 +569,19 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
             }
             case kVerbatim: {
                 std::string_view s;
-                if (!cur.bytes(s)) return corrupt("freeman", "truncated verbatim bytes");
+                if (!cur.sized(s)) return corrupt("freeman", "truncated verbatim bytes");
                 out.append(s);
                 break;
             }
             case kHead: {
                 std::uint8_t flags = 0;
-                if (!cur.byte(flags) || (flags & ~0x1Fu) != 0 || i >= n)
+                if (!cur.u8(flags) || (flags & ~0x1Fu) != 0 || i >= n)
                     return corrupt("freeman", "a bad line head");
                 const Chain& c = ch[i++];
                 std::string_view ws;
                 Spelling sp;
                 if (flags & kLead) {
-                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (!cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 }
                 if (flags & kX) {
@@ -591,7 +591,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
                     append_int(out, c.start[0]);
                 }
                 if (flags & kWs1) {
-                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (!cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 } else {
                     out.push_back(' ');
@@ -603,7 +603,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
                     append_int(out, c.start[1]);
                 }
                 if (flags & kWs2) {
-                    if (c.steps.empty() || !cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (c.steps.empty() || !cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 } else if (!c.steps.empty()) {
                     out.push_back(' ');

@@ -96,7 +96,7 @@ private:
     void flush_verbatim() {
         if (verb_.empty()) return;
         out_.push_back(static_cast<char>(kVerbatim));
-        put_bytes(out_, verb_);
+        wire::put_sized(out_, verb_);
         verb_.clear();
     }
     std::string out_, verb_;
@@ -301,12 +301,12 @@ bool PointsParser::point_line(const ParsedLine& pl, int term) {
     std::string& o = lb_.ops();
     o.push_back(static_cast<char>(kPoint));
     o.push_back(static_cast<char>(flags));
-    if (flags & kLead) put_bytes(o, pl.lead);
+    if (flags & kLead) wire::put_sized(o, pl.lead);
     if (flags & kSpell)
         for (int a = 0; a < pl.count; ++a) put_spelling(o, pl.spell[a]);
     if (flags & kGaps)
-        for (int a = 0; a + 1 < pl.count; ++a) put_bytes(o, pl.gap[a]);
-    if (flags & kTail) put_bytes(o, tail);
+        for (int a = 0; a + 1 < pl.count; ++a) wire::put_sized(o, pl.gap[a]);
+    if (flags & kTail) wire::put_sized(o, tail);
     return true;
 }
 
@@ -508,7 +508,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
     LayoutCursor lc(b.layout);
     while (!lc.done()) {
         std::uint8_t op = 0;
-        lc.byte(op);
+        lc.u8(op);
         switch (op) {
             case kNop:
                 break;
@@ -537,22 +537,22 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
             }
             case kVerbatim: {
                 std::string_view s;
-                if (!lc.bytes(s)) return corrupt("points", "truncated verbatim bytes");
+                if (!lc.sized(s)) return corrupt("points", "truncated verbatim bytes");
                 out.append(s);
                 break;
             }
             case kStyle:
-                if (!lc.byte(style) || (style & ~(kCrlf | 3u)) != 0) return corrupt("points", "a bad style");
+                if (!lc.u8(style) || (style & ~(kCrlf | 3u)) != 0) return corrupt("points", "a bad style");
                 break;
             case kPoint: {
                 std::uint8_t flags = 0;
-                if (!lc.byte(flags) || (flags & ~0x0Fu) != 0 || cur.done())
+                if (!lc.u8(flags) || (flags & ~0x0Fu) != 0 || cur.done())
                     return corrupt("points", "a bad point line");
                 const int axes = cur.axes();
                 const Point p = *cur.next();
                 std::string_view s;
                 if (flags & kLead) {
-                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    if (!lc.sized(s)) return corrupt("points", "a bad point line");
                     out.append(s);
                 }
                 Spelling sp[kMaxAxes];
@@ -562,7 +562,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
                 for (int a = 0; a < axes; ++a) {
                     if (a) {
                         if (flags & kGaps) {
-                            if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                            if (!lc.sized(s)) return corrupt("points", "a bad point line");
                             out.append(s);
                         } else {
                             out.append(style_sep(style));
@@ -571,7 +571,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
                     append_number(out, p[a], sp[a]);
                 }
                 if (flags & kTail) {
-                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    if (!lc.sized(s)) return corrupt("points", "a bad point line");
                     out.append(s);
                 } else {
                     out.append(style_eol(style));

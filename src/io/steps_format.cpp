@@ -240,7 +240,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
     bool first = true;
     while (!lc.done()) {
         std::uint8_t op = 0;
-        lc.byte(op);
+        lc.u8(op);
         const std::uint8_t kind = op & 0xC0;
         const std::uint8_t arg = op & 0x3F;
         if (op == kPaced) {
