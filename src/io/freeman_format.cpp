@@ -7,7 +7,7 @@
 // the block's chain in a tight loop. Complexity: O(1) per input byte.
 #include <algorithm>
 
-#include "document_internal.hpp"
+#include "line_scanner.hpp"
 
 namespace stepzip::io {
 namespace {
@@ -28,75 +28,45 @@ enum : std::uint8_t {
 // kHead flags: which fields differ from the canonical head "X Y " (in order).
 enum : std::uint8_t { kLead = 1, kX = 2, kWs1 = 4, kY = 8, kWs2 = 16 };
 
-bool is_ws(unsigned char c) { return c == ' ' || c == '\t'; }
-bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
-
-class LayoutBuilder {
+class LayoutBuilder : public LayoutText<LayoutBuilder, kVerbatim> {
 public:
     void run(std::uint8_t op) {
         flush_verbatim();
-        if (run_n_ != 0 && run_op_ != op) flush_run();
+        if (run_n_ != 0 && run_op_ != op) flush_runs();
         run_op_ = op;
         ++run_n_;
     }
-    void verbatim(std::string_view s) {
-        if (s.empty()) return;
-        flush_run();
-        verb_.append(s);
-    }
-    std::string& ops() {
-        flush_run();
-        flush_verbatim();
-        return out_;
-    }
-    std::size_t size() const { return out_.size() + verb_.size(); }
-    std::string take() {
-        ops();
-        std::string s = std::move(out_);
-        out_.clear();
-        return s;
-    }
 
 private:
-    void flush_run() {
+    friend class LayoutText<LayoutBuilder, kVerbatim>;
+    void flush_runs() {
         if (run_n_ == 0) return;
         out_.push_back(static_cast<char>(run_op_));
         put_varint(out_, run_n_);
         run_n_ = 0;
     }
-    void flush_verbatim() {
-        if (verb_.empty()) return;
-        out_.push_back(static_cast<char>(kVerbatim));
-        wire::put_sized(out_, verb_);
-        verb_.clear();
-    }
-    std::string out_;
-    std::string verb_;
     std::uint8_t run_op_ = 0;
     std::uint64_t run_n_ = 0;
 };
 
-class FreemanParser final : public FormatParser {
+class FreemanParser final : public LineScanner<FreemanParser, LayoutBuilder> {
 public:
     FreemanParser(std::string source, std::size_t block_steps)
-        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {}
-
-    Result<void> feed(std::string_view data, bool last) override;
-    std::uint64_t line() const override { return line_; }
+        : LineScanner(std::move(source), block_steps, 2) {}
 
 private:
-    enum class St : std::uint8_t { lead, x_sign, x_dig, ws1, y_sign, y_dig, ws2, codes, tail, cr, comment };
+    friend class LineScanner<FreemanParser, LayoutBuilder>;
+    enum class St : std::uint8_t { lead, x_sign, x_dig, ws1, y_sign, y_dig, ws2, codes, tail, cr };
+
+    // The grammar, for LineScanner.
+    const unsigned char* scan(const unsigned char* p, const unsigned char* end);
+    bool end_of_input();
+    void before_open_cut() {
+        if (!head_emitted_) emit_head();
+    }
 
     bool byte(unsigned char c);
     const unsigned char* run_codes(const unsigned char* p, const unsigned char* end);
-    const unsigned char* run_comment(const unsigned char* p, const unsigned char* end);
-    bool finish();
-
-    bool fail(Errc code, std::uint64_t column, std::string_view what) {
-        err_ = make_error(code, at(source_, line_, column, what));
-        failed_ = true;
-        return false;
-    }
     bool add_ws(std::string& field, unsigned char c) {
         if (field.size() >= kMaxFieldBytes)
             return fail(Errc::limit, col_, "more than 4096 spaces or tabs in a row in a chain line");
@@ -137,14 +107,7 @@ private:
         st_ = St::lead;
         if (term != 0 && full()) cut(false);
     }
-    bool full() const { return blk_steps_ >= block_steps_ || lb_.size() >= cap_; }
-    void cut(bool open);
 
-    std::string source_;
-    std::size_t block_steps_;
-    std::size_t cap_;
-    std::uint64_t line_ = 1;
-    std::uint64_t col_ = 1;  // column of the byte being read
     St st_ = St::lead;
     bool cr_in_chain_ = false;
     std::uint64_t cr_col_ = 0;
@@ -153,14 +116,6 @@ private:
     std::string lead_, ws1_, ws2_, tail_;
     bool head_emitted_ = false;
     std::uint64_t line_codes_ = 0;
-
-    Block blk_;
-    std::size_t blk_steps_ = 0;
-    LayoutBuilder lb_;
-    bool emitted_ = false;
-    bool failed_ = false;
-    bool finished_ = false;
-    Error err_;
 };
 
 void FreemanParser::emit_head() {
@@ -199,29 +154,6 @@ void FreemanParser::end_chain_line(int term) {
     end_line_checks(term);
 }
 
-void FreemanParser::cut(bool open) {
-    if (open && !head_emitted_) emit_head();
-    Block b = std::move(blk_);
-    b.axes = 2;
-    b.open = open;
-    b.layout = lb_.take();
-    if (b.layout.empty()) b.layout.push_back(static_cast<char>(kNop));
-    Point end{};
-    if (open) end = b.chains.back().end();
-    ready.push_back(std::move(b));
-    emitted_ = true;
-    blk_ = Block{};
-    blk_.axes = 2;
-    blk_steps_ = 0;
-    if (open) {
-        blk_.continues = true;
-        Chain c;
-        c.axes = 2;
-        c.start = end;
-        blk_.chains.push_back(std::move(c));
-    }
-}
-
 const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsigned char* end) {
     while (p < end) {
         if (static_cast<unsigned>(*p - '0') > 7u) return p;
@@ -245,31 +177,6 @@ const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsi
     return p;
 }
 
-const unsigned char* FreemanParser::run_comment(const unsigned char* p, const unsigned char* end) {
-    while (p < end) {
-        if (lb_.size() >= cap_) cut(false);
-        const std::size_t room = cap_ - lb_.size();
-        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
-        const unsigned char* q = p;
-        while (q < lim && *q != '\n' && !is_binary_byte(*q)) ++q;
-        lb_.verbatim(std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(q - p)));
-        col_ += static_cast<std::uint64_t>(q - p);
-        p = q;
-        if (q == lim) continue;
-        if (*q == '\n') {
-            lb_.verbatim("\n");
-            ++line_;
-            col_ = 1;
-            st_ = St::lead;
-            if (full()) cut(false);
-            return p + 1;
-        }
-        fail(Errc::syntax, col_, describe_byte(*q) + " in a comment (text formats hold no binary bytes)");
-        return nullptr;
-    }
-    return p;
-}
-
 bool FreemanParser::byte(unsigned char c) {
     switch (st_) {
         case St::lead:
@@ -278,7 +185,7 @@ bool FreemanParser::byte(unsigned char c) {
                 lb_.verbatim(lead_);
                 lb_.verbatim("#");
                 lead_.clear();
-                st_ = St::comment;
+                start_comment();
                 return true;
             }
             if (c == '+' || c == '-' || is_digit(c)) {
@@ -414,13 +321,11 @@ bool FreemanParser::byte(unsigned char c) {
                 end_line_checks(2);
             }
             return true;
-        case St::comment:
-            break;
     }
     return true;
 }
 
-bool FreemanParser::finish() {
+bool FreemanParser::end_of_input() {
     switch (st_) {
         case St::lead:
             lb_.verbatim(lead_);
@@ -448,57 +353,27 @@ bool FreemanParser::finish() {
             break;
         case St::cr:
             return fail(Errc::syntax, cr_col_, "a carriage return not followed by a line feed");
-        case St::comment:
-            break;
-    }
-    if (!blk_.chains.empty() || lb_.size() != 0 || !emitted_) {
-        Block b = std::move(blk_);
-        b.axes = 2;
-        b.open = false;
-        b.layout = lb_.take();
-        if (b.layout.empty() && !b.chains.empty()) b.layout.push_back(static_cast<char>(kNop));
-        ready.push_back(std::move(b));
-        emitted_ = true;
-        blk_ = Block{};
     }
     return true;
 }
 
-Result<void> FreemanParser::feed(std::string_view data, bool last) {
-    if (failed_) return err_;
-    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
-    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
-    const auto* end = p + data.size();
-    while (p < end) {
+const unsigned char* FreemanParser::scan(const unsigned char* p, const unsigned char* end) {
+    while (p < end && !in_comment()) {
         if (st_ == St::codes) {
             p = run_codes(p, end);
             if (p == end) break;
-        } else if (st_ == St::comment) {
-            p = run_comment(p, end);
-            if (p == nullptr) return err_;
-            continue;
         } else if (st_ == St::ws2 && static_cast<unsigned>(*p - '0') <= 7u) {
             start_chain();
             st_ = St::codes;
             continue;
         }
         const unsigned char c = *p++;
-        if (is_binary_byte(c))
-            return fail(Errc::syntax, col_, describe_byte(c) + " (text formats hold no binary bytes)"),
-                   err_;
-        if (!byte(c)) return err_;
-        if (c == '\n') {
-            ++line_;
-            col_ = 1;
-        } else {
-            ++col_;
-        }
+        if (is_binary_byte(c)) return binary_byte(c), nullptr;
+        if (!byte(c)) return nullptr;
+        if (c == '\n') next_line();
+        else ++col_;
     }
-    if (last) {
-        finished_ = true;
-        if (!finish()) return err_;
-    }
-    return {};
+    return p;
 }
 
 // ---- writer ----------------------------------------------------------------------
