@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "../common/bytes.hpp"
+#include "../../common/bytes.hpp"
 #include "stepzip/document.hpp"
 
 namespace stepzip::io {
