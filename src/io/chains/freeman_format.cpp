@@ -79,6 +79,26 @@ private:
         n.digit(c - '0');
         return true;
     }
+    // A coordinate starts with c ('+', '-' or a digit) at the current column.
+    void start_number(NumberAccum& n, std::uint64_t& column, unsigned char c, St sign, St digits) {
+        n.reset();
+        column = col_;
+        if (c == '+') n.plus = true;
+        if (c == '-') n.negative = true;
+        if (is_digit(c)) n.digit(c - '0');
+        st_ = is_digit(c) ? digits : sign;
+    }
+    // A CR: the next byte must be LF.
+    void carriage_return(bool in_chain) {
+        cr_col_ = col_;
+        cr_in_chain_ = in_chain;
+        st_ = St::cr;
+    }
+    // LF or CR after a chain line's head or codes.
+    void chain_line_break(unsigned char c) {
+        if (c == '\n') end_chain_line(1);
+        else carriage_return(true);
+    }
     bool end_number(const NumberAccum& n, std::uint64_t column) {
         if (n.too_big)
             return fail(Errc::overflow, column, "coordinate out of range (limit is +-2^62)");
@@ -189,18 +209,11 @@ bool FreemanParser::byte(unsigned char c) {
                 return true;
             }
             if (c == '+' || c == '-' || is_digit(c)) {
-                x_.reset();
-                x_col_ = col_;
-                if (c == '+') x_.plus = true;
-                if (c == '-') x_.negative = true;
-                if (is_digit(c)) x_.digit(c - '0');
-                st_ = is_digit(c) ? St::x_dig : St::x_sign;
+                start_number(x_, x_col_, c, St::x_sign, St::x_dig);
                 return true;
             }
             if (c == '\r') {
-                cr_col_ = col_;
-                cr_in_chain_ = false;
-                st_ = St::cr;
+                carriage_return(false);
                 return true;
             }
             if (c == '\n') {
@@ -235,12 +248,7 @@ bool FreemanParser::byte(unsigned char c) {
         case St::ws1:
             if (is_ws(c)) return add_ws(ws1_, c);
             if (c == '+' || c == '-' || is_digit(c)) {
-                y_.reset();
-                y_col_ = col_;
-                if (c == '+') y_.plus = true;
-                if (c == '-') y_.negative = true;
-                if (is_digit(c)) y_.digit(c - '0');
-                st_ = is_digit(c) ? St::y_dig : St::y_sign;
+                start_number(y_, y_col_, c, St::y_sign, St::y_dig);
                 return true;
             }
             if (c == '\n' || c == '\r')
@@ -256,13 +264,7 @@ bool FreemanParser::byte(unsigned char c) {
             }
             if (c == '\r' || c == '\n') {
                 start_chain();
-                if (c == '\n') {
-                    end_chain_line(1);
-                } else {
-                    cr_col_ = col_;
-                    cr_in_chain_ = true;
-                    st_ = St::cr;
-                }
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_,
@@ -275,13 +277,7 @@ bool FreemanParser::byte(unsigned char c) {
                 start_chain();
                 tail_ = std::move(ws2_);
                 ws2_.clear();
-                if (c == '\n') {
-                    end_chain_line(1);
-                } else {
-                    cr_col_ = col_;
-                    cr_in_chain_ = true;
-                    st_ = St::cr;
-                }
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_, "expected Freeman codes 0-7, found " + describe_byte(c));
@@ -296,14 +292,8 @@ bool FreemanParser::byte(unsigned char c) {
             [[fallthrough]];
         case St::tail:
             if (is_ws(c)) return add_ws(tail_, c);
-            if (c == '\n') {
-                end_chain_line(1);
-                return true;
-            }
-            if (c == '\r') {
-                cr_col_ = col_;
-                cr_in_chain_ = true;
-                st_ = St::cr;
+            if (c == '\n' || c == '\r') {
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_,
