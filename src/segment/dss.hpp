@@ -184,6 +184,25 @@ struct RunState {
         return std::clamp<wide>(ceil_div(val, hi.d), 0, k);
     }
 
+    /// A run of k letters `letter`: how many keep the word a DSS.
+    std::int64_t alive(int letter, std::int64_t k) const noexcept {
+        return letter == 0 ? zeros_alive(k) : ones_alive(k);
+    }
+
+    /// The bounds on x, the run letter's count after a prefix of the run,
+    /// under which the word ends valid: x * b1 < a1 and x * b2 < a2 (upper
+    /// bounds; none when b <= 0, and then a > 0) and x * c > e (lower bound).
+    /// Zeros (x = P, q ones): lo < q/P, P * r < q, q/P < hi. Ones (x = Q, p
+    /// zeros): Q/p < hi, Q * s < p, lo < Q/p. Precondition: the other
+    /// letter's count is non-zero.
+    struct Bounds {
+        wide b1, a1, b2, a2, c, e;
+    };
+    Bounds bounds(int letter) const noexcept {
+        if (letter == 0) return {lo.n, wide(q) * lo.d, r.n, wide(q) * r.d, hi.n, wide(q) * hi.d};
+        return {hi.d, wide(hi.n) * p, s.d, wide(p) * s.n, lo.d, wide(lo.n) * p};
+    }
+
     /// Appends a run of k >= 1 zeros. Its interior zeros are never hull
     /// vertices and never give an extreme tangent (every 1-position left of
     /// the run sees its last zero at a smaller slope); its first zero is kept

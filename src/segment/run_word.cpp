@@ -13,40 +13,20 @@ namespace {
 std::int64_t clamp64(wide v, std::int64_t lo, std::int64_t hi) { return std::clamp(v, lo, hi); }
 }  // namespace
 
+// A run of the letter at (x0 + j) in its own coordinate, j = 0..k-1: after
+// j + 1 of them the letter's count is x = x0 + j + 1, and every validity
+// condition on the word is a bound on x (dss::RunState::bounds).
 RunWord::Probe RunWord::probe(int letter, std::int64_t k) const noexcept {
-    return letter == 0 ? probe_zeros(k) : probe_ones(k);
-}
-
-// Zeros at (p + j, q), j = 0..k-1; after j + 1 of them the word has
-// P = p + j + 1 zeros and q ones.
-RunWord::Probe RunWord::probe_zeros(std::int64_t k) const noexcept {
-    const std::int64_t p = st_.p, q = st_.q;
-    const std::int64_t alive = st_.zeros_alive(k);
+    const std::int64_t alive = st_.alive(letter, k);
     if (alive == 0) return {0, 1, 0};
-    if (q == 0) return {alive, 1, alive};
-    // Bounds on P: lo < q/P < hi (the bound before the run) and, for the
-    // tangents added by the run, P * u.q < q * (u.p + 1) for every u.
-    const dss::Frac lo = st_.lo, hi = st_.hi, r = st_.r;
-    wide pmin = 1, pmax = wide(p) + alive;
-    if (lo.n > 0) pmax = std::min(pmax, floor_div(wide(q) * lo.d - 1, lo.n));
-    if (hi.d > 0) pmin = std::max(pmin, floor_div(wide(q) * hi.d, hi.n) + 1);
-    if (r.n > 0) pmax = std::min(pmax, floor_div(wide(q) * r.d - 1, r.n));
-    return {alive, clamp64(pmin - p, 1, k + 1), clamp64(pmax - p, 0, alive)};
-}
-
-// Ones at (p, q + j); after j + 1 of them: p zeros and Q = q + j + 1 ones.
-RunWord::Probe RunWord::probe_ones(std::int64_t k) const noexcept {
-    const std::int64_t p = st_.p, q = st_.q;
-    const std::int64_t alive = st_.ones_alive(k);
-    if (alive == 0) return {0, 1, 0};
-    if (p == 0) return {alive, 1, alive};
-    // Bounds on Q: lo < Q/p < hi and Q * z.p < p * (z.q + 1) for every z.
-    const dss::Frac lo = st_.lo, hi = st_.hi, s = st_.s;
-    wide qmin = 1, qmax = wide(q) + alive;
-    if (hi.d > 0) qmax = std::min(qmax, floor_div(wide(hi.n) * p - 1, hi.d));
-    if (lo.n >= 0) qmin = std::max(qmin, floor_div(wide(lo.n) * p, lo.d) + 1);
-    if (s.d > 0) qmax = std::min(qmax, floor_div(wide(p) * s.n - 1, s.d));
-    return {alive, clamp64(qmin - q, 1, k + 1), clamp64(qmax - q, 0, alive)};
+    const std::int64_t x0 = letter == 0 ? st_.p : st_.q;
+    if ((letter == 0 ? st_.q : st_.p) == 0) return {alive, 1, alive};
+    const dss::RunState::Bounds b = st_.bounds(letter);
+    wide xmin = 1, xmax = wide(x0) + alive;
+    if (b.b1 > 0) xmax = std::min(xmax, floor_div(b.a1 - 1, b.b1));
+    if (b.b2 > 0) xmax = std::min(xmax, floor_div(b.a2 - 1, b.b2));
+    if (b.c > 0) xmin = std::max(xmin, floor_div(b.e, b.c) + 1);
+    return {alive, clamp64(xmin - x0, 1, k + 1), clamp64(xmax - x0, 0, alive)};
 }
 
 void RunWord::commit(int letter, std::int64_t k) {

@@ -54,9 +54,6 @@ public:
     std::int64_t ones() const noexcept { return st_.q; }
 
 private:
-    Probe probe_zeros(std::int64_t k) const noexcept;
-    Probe probe_ones(std::int64_t k) const noexcept;
-
     dss::RunState st_;  // hulls and slope bounds (dss.hpp)
 };
 

@@ -75,54 +75,26 @@ TwoAxisGreedy::TwoAxisGreedy(Profile p) : profile_(p), eight_(profile_eight_conn
     assert(p != Profile::patent);
 }
 
-// Zeros at (p + j, q), j = 0..k-1 (see RunWord::probe_zeros). The valid
-// prefixes of the run are the P = p + m with lo < q/P < hi and
-// P * r < q: upper bounds on P from lo and r, a lower bound from hi.
-inline std::int64_t TwoAxisGreedy::zeros(std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t p = st_.p, q = st_.q;
-    const dss::Frac lo = st_.lo, hi = st_.hi, r = st_.r;
-    const std::int64_t alive = st_.zeros_alive(k);
+// A run of k letters (see RunWord::probe): the largest valid prefix is the
+// largest count x within the upper bounds, if it passes the lower one; the
+// whole run is tried first by multiplications, a division only if it fails.
+inline std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
+    const std::int64_t alive = st_.alive(letter, k);
     best = 0;
     if (alive == 0) return 0;
-    if (q == 0) {
+    const std::int64_t x0 = letter == 0 ? st_.p : st_.q;
+    if ((letter == 0 ? st_.q : st_.p) == 0) {
         best = alive;
         return alive;
     }
-    std::int64_t m = alive;
-    const wide P = p + m;
-    if (!(lo.n * P < q * lo.d && r.n * P < q * r.d)) {
-        wide pmax = P;
-        if (lo.n > 0) pmax = std::min(pmax, floor_div(q * lo.d - 1, lo.n));
-        if (r.n > 0) pmax = std::min(pmax, floor_div(q * r.d - 1, r.n));
-        m = pmax - p;
-        if (m < 1) return alive;
+    const dss::RunState::Bounds b = st_.bounds(letter);
+    wide x = x0 + alive;
+    if (!(b.b1 * x < b.a1 && b.b2 * x < b.a2)) {
+        if (b.b1 > 0) x = std::min(x, floor_div(b.a1 - 1, b.b1));
+        if (b.b2 > 0) x = std::min(x, floor_div(b.a2 - 1, b.b2));
+        if (x - x0 < 1) return alive;
     }
-    if ((p + m) * hi.n > q * hi.d) best = m;
-    return alive;
-}
-
-// Ones at (p, q + j) (see RunWord::probe_ones): Q = q + m with
-// lo < Q/p < hi and Q * s < p.
-inline std::int64_t TwoAxisGreedy::ones(std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t p = st_.p, q = st_.q;
-    const dss::Frac lo = st_.lo, hi = st_.hi, s = st_.s;
-    const std::int64_t alive = st_.ones_alive(k);
-    best = 0;
-    if (alive == 0) return 0;
-    if (p == 0) {
-        best = alive;
-        return alive;
-    }
-    std::int64_t m = alive;
-    const wide Q = q + m;
-    if (!(Q * hi.d < hi.n * p && Q * s.d < p * s.n)) {
-        wide qmax = Q;
-        if (hi.d > 0) qmax = std::min(qmax, floor_div(hi.n * p - 1, hi.d));
-        if (s.d > 0) qmax = std::min(qmax, floor_div(p * s.n - 1, s.d));
-        m = qmax - q;
-        if (m < 1) return alive;
-    }
-    if (lo.n * p < (q + m) * lo.d) best = m;
+    if (x * b.c > b.e) best = x - x0;
     return alive;
 }
 
@@ -189,7 +161,7 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
         const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
         if (kk <= 0) break;
         std::int64_t in_run;
-        const std::int64_t alive = letter == 0 ? zeros(kk, in_run) : ones(kk, in_run);
+        const std::int64_t alive = read_run(letter, kk, in_run);
         if (in_run > 0) {
             best = length + in_run;
             best_count_[0] = st_.p + (letter == 0 ? in_run : 0);

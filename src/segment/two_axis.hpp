@@ -41,11 +41,10 @@ public:
     std::optional<Segment> fit(std::int64_t m) const;
 
 private:
-    // A run of k letters 0 (ones): returns how many keep the word a DSS and
+    // A run of k letters `letter`: returns how many keep the word a DSS and
     // sets `best` to the largest valid prefix length of the run (0: none),
     // with multiplications only unless the run is cut.
-    std::int64_t zeros(std::int64_t k, std::int64_t& best) const noexcept;
-    std::int64_t ones(std::int64_t k, std::int64_t& best) const noexcept;
+    std::int64_t read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept;
 
     Profile profile_;
     bool eight_;
