@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stepzip/chain.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 namespace stepzip::corpus {

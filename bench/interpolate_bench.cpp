@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "../src/container/block_codec.hpp"
-#include "../src/container/bytes.hpp"
+#include "../src/common/bytes.hpp"
 #include "stepzip/container.hpp"
 
 namespace stepzip {

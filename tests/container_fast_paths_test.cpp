@@ -12,6 +12,7 @@
 
 #include "../src/segment/default_phase_cut.hpp"
 #include "stepzip/interpolate/linear.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 namespace stepzip {

@@ -6,6 +6,7 @@
 
 #include "stepzip/chain.hpp"
 #include "stepzip/interpolate/linear.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 namespace stepzip {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "stepzip/interpolate/linear.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 namespace stepzip {

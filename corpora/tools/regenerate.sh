@@ -20,7 +20,7 @@ done
 
 g++ -O2 -std=c++20 "$here/trace_glyphs.cpp" $(pkg-config --cflags --libs freetype2) -o "$tmp/trace_glyphs"
 g++ -O2 -std=c++20 -I"$root/include" "$here/stepper_stream.cpp" "$root"/src/core/*.cpp \
-    "$root/src/interpolate/linear.cpp" -o "$tmp/stepper_stream"
+    "$root/src/interpolate/linear.cpp" "$root/src/interpolate/segment.cpp" -o "$tmp/stepper_stream"
 
 hershey=/usr/share/hershey-fonts
 dejavu=/usr/share/fonts/truetype/dejavu

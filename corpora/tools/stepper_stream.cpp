@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 
 int main() {

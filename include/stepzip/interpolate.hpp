@@ -9,3 +9,4 @@
 #include "stepzip/interpolate/feedrate.hpp"
 #include "stepzip/interpolate/prediction.hpp"
 #include "stepzip/interpolate/recursion.hpp"
+#include "stepzip/interpolate/segment.hpp"

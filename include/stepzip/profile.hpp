@@ -77,11 +77,6 @@ Segment default_segment(Profile p, const Point& delta, int axes) noexcept;
 /// Errors: Errc::invalid_argument / Errc::limit with a message.
 Result<void> check_segment(Profile p, const Segment& seg, int axes);
 
-/// Forward interpolation: appends the steps of `seg` under profile `p` to
-/// `out`. Precondition: check_segment(p, seg, axes) succeeds.
-/// Thread-safe (no shared state). Complexity: O(steps * axes).
-void expand_segment(Profile p, const Segment& seg, int axes, std::vector<Step>& out);
-
 /// Largest |total| per axis accepted in a segment: keeps every evaluation
 /// function, including the patent's (up to 3·a·b), inside 64-bit arithmetic.
 inline constexpr std::int64_t kMaxSegmentTotal = std::int64_t{1} << 30;

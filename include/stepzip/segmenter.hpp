@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stepzip/error.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
 #include "stepzip/step.hpp"

@@ -96,16 +96,16 @@ private:
     void drain(std::vector<Segment>& out, bool flush);
     // Emits the longest exact prefix of the held steps (within the scanned ones).
     void cut(std::vector<Segment>& out);
+    // Forgets the scanned steps (the recognizer starts a new segment).
+    void restart() noexcept;
 
     Profile profile_;
     int axes_;
     std::size_t max_held_;
     std::vector<Step> held_;
-    std::optional<SegmentRecognizer> rec_;  // linear profiles only
-    std::size_t scanned_ = 0;  // held steps read into rec_ (linear profiles)
-    std::size_t best_ = 0;     // longest exact prefix among them
+    std::optional<ProfileRecognizer> rec_;  // set when valid()
+    std::size_t scanned_ = 0;  // held steps read into rec_
     bool broken_ = false;      // the next held step cannot extend the segment
-    int patent_sx_ = 0, patent_sy_ = 0;  // signs of the held steps (patent)
     std::uint64_t pushed_ = 0;
     std::uint64_t forced_ = 0;
 };

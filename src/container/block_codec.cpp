@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "bench_hooks.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 
 namespace stepzip::stz {
 

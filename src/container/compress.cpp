@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "block_codec.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 #include "encoder.hpp"
 #include "memory_io.hpp"
 #include "stepzip/container.hpp"

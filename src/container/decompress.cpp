@@ -12,7 +12,7 @@
 
 #include "block_codec.hpp"
 #include "modeled_block.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 #include "memory_io.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "block_codec.hpp"
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 #include "window.hpp"
 
 namespace stepzip::stz {

@@ -1,7 +1,7 @@
 // Contributions of a block to the window (docs/FORMAT.md "Window").
 #include "window.hpp"
 
-#include "bytes.hpp"
+#include "../common/bytes.hpp"
 
 namespace stepzip::stz {
 

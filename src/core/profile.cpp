@@ -4,8 +4,6 @@
 #include <cstdlib>
 #include <string>
 
-#include "stepzip/interpolate/linear.hpp"
-
 namespace stepzip {
 
 std::string_view profile_name(Profile p) noexcept {
@@ -104,22 +102,6 @@ Result<void> check_segment(Profile p, const Segment& seg, int axes) {
             return make_error(Errc::invalid_argument, "segment phase out of range");
     }
     return {};
-}
-
-void expand_segment(Profile p, const Segment& seg, int axes, std::vector<Step>& out) {
-    switch (p) {
-        case Profile::eval4:
-            eval_linear(seg.delta[0], seg.delta[1], seg.phase[0], out);
-            return;
-        case Profile::patent:
-            patent_forward(seg.delta[0], seg.delta[1], seg.phase[0], out);
-            return;
-        case Profile::eval8:
-        case Profile::grbl:
-        case Profile::marlin:
-            multiaxis_linear(seg.delta, axes, seg.phase.data(), out);
-            return;
-    }
 }
 
 }  // namespace stepzip

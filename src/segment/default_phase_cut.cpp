@@ -15,6 +15,7 @@
 
 #include "default_phase_cut.hpp"
 #include "run_word.hpp"
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
 namespace stepzip {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "dss.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
 namespace stepzip {
@@ -63,15 +64,6 @@ std::pair<std::int64_t, std::int64_t> word_phases(std::span<const Step> steps, L
     return {lo, hi};
 }
 
-std::optional<std::int64_t> pick(Profile p, std::int64_t a, std::int64_t b, std::int64_t lo,
-                                 std::int64_t hi) {
-    const PhaseRange r = phase_range(p, a, b);
-    lo = std::max(lo, r.lo);
-    hi = std::min(hi, r.hi);
-    if (lo >= hi) return std::nullopt;
-    return std::clamp(default_phase(p, a, b), lo, hi - 1);
-}
-
 std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta) {
     for (Step s : steps)
         if (std::popcount(s & 0x555u) != 1) return std::nullopt;
@@ -83,7 +75,7 @@ std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta
         return seg;
     }
     auto [lo, hi] = word_phases(steps, [](Step s) { return (s & 1u) != 0 ? 0 : 1; }, a, b);
-    const auto f = pick(Profile::eval4, a, b, lo, hi);
+    const auto f = detail::dss::pick_phase(Profile::eval4, a, b, lo, hi);
     if (!f) return std::nullopt;
     seg.phase[0] = *f;
     return seg;
@@ -106,7 +98,7 @@ std::optional<Segment> fit_leading(Profile p, std::span<const Step> steps, int a
         }
         auto [lo, hi] = word_phases(
             steps, [i](Step t) { return static_cast<int>((t >> (2 * i)) & 1u); }, l - s, s);
-        const auto f = pick(p, l, s, lo, hi);
+        const auto f = detail::dss::pick_phase(p, l, s, lo, hi);
         if (!f) return std::nullopt;
         seg.phase[j++] = *f;
     }
@@ -132,7 +124,7 @@ std::optional<Segment> fit_patent(std::span<const Step> steps, const Point& delt
         if (xs) { --x; f += y; }
         else { --y; f -= x; }
     }
-    const auto ph = pick(Profile::patent, a, b, lo, hi);
+    const auto ph = detail::dss::pick_phase(Profile::patent, a, b, lo, hi);
     if (!ph) return std::nullopt;
     Segment seg;
     seg.delta = delta;

@@ -3,7 +3,6 @@
 #include <limits>
 
 #include "internal.hpp"
-#include "run_word.hpp"
 #include "stepzip/segment/recognizer.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
@@ -25,59 +24,23 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
     };
 
     // The greedy cut's segments are edges as well: never worse than greedy.
-    const GreedySegmenter greedy(profile_, axes_);
+    detail::ProfileCut cut(profile_, axes_);
     std::vector<std::size_t> greedy_end(n, 0);
     for (std::size_t pos = 0; pos < n;) {
-        const auto m = static_cast<std::size_t>(greedy.longest(steps.subspan(pos)));
+        const auto m = static_cast<std::size_t>(cut.longest(steps.subspan(pos)));
         greedy_end[pos] = pos + m;
         pos += m;
     }
 
-    const bool patent = profile_ == Profile::patent;
-    const std::size_t window =
-        static_cast<std::size_t>(patent ? kPatentOptimalWindow : kOptimalWindow);
-    // End of the run of identical steps containing each position.
-    std::vector<std::uint32_t> run_end;
-    if (!patent) {
-        run_end.resize(n);
-        for (std::size_t i = n; i-- > 0;)
-            run_end[i] = static_cast<std::uint32_t>(
-                i + 1 < n && steps[i + 1] == steps[i] ? run_end[i + 1] : i + 1);
-    }
-    detail::RunSegment rec(patent ? Profile::eval4 : profile_, axes_);
+    // Every exact end from each start, up to the window.
+    const auto window = static_cast<std::size_t>(cut.window());
+    cut.prepare(steps);
     for (std::size_t s = 0; s < n; ++s) {
         assert(dist[s] != kUnreached);  // every single step is a segment
         if (greedy_end[s] != 0) relax(s, greedy_end[s]);
-        const std::size_t lim = std::min(n, s + window);
-        if (patent) {
-            const auto rest = steps.subspan(s);
-            const std::int64_t reach = patent_reach(rest, static_cast<std::int64_t>(lim - s));
-            std::int64_t xs = 0;
-            for (std::int64_t m = 1; m <= reach; ++m) {
-                xs += step_axis(rest[static_cast<std::size_t>(m - 1)], 0) != 0;
-                if (patent_prefix_exact(rest, m, xs, m - xs)) relax(s, s + static_cast<std::size_t>(m));
-            }
-            continue;
-        }
-        // Every exact end from s, run by run: each run contributes an
-        // interval of ends.
-        rec.reset();
-        const std::uint32_t next = dist[s] + 1;
-        for (std::size_t pos = s; pos < lim;) {
-            const std::size_t e = std::min<std::size_t>(run_end[pos], lim);
-            const auto k = static_cast<std::int64_t>(e - pos);
-            const auto r = rec.probe(steps[pos], k);
-            for (std::int64_t m = r.lo; m <= r.hi; ++m) {
-                const std::size_t end = pos + static_cast<std::size_t>(m);
-                if (next < dist[end]) {
-                    dist[end] = next;
-                    from[end] = s;
-                }
-            }
-            if (r.alive < k) break;
-            rec.commit(steps[pos], k);
-            pos = e;
-        }
+        cut.ends(s, std::min(n, s + window), [&](std::int64_t lo, std::int64_t hi) {
+            for (std::int64_t m = lo; m <= hi; ++m) relax(s, s + static_cast<std::size_t>(m));
+        });
     }
 
     std::vector<std::size_t> cuts;
@@ -88,7 +51,7 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
         auto seg = fit_segment(profile_, run, axes_);
         assert(seg.has_value());
         if (seg) out.push_back(*seg);
-        else greedy.run(run, out);  // never reached when the recognizer is right
+        else GreedySegmenter(profile_, axes_).run(run, out);  // never reached when the recognizer is right
         pos = *it;
     }
 }

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "stepzip/interpolate/segment.hpp"
 #include "stepzip/segment/recognizer.hpp"
 #include "stepzip/segment/segmenters.hpp"
 

@@ -21,6 +21,8 @@
 // (p+j+1) * max u.q/(u.p+1) < q over the 1-positions u) is a bound on p+j+1,
 // so the valid prefixes of the run form an interval. Runs of ones are the
 // mirror image. The hulls change only by the run's end points.
+// What it keeps of its own: the valid prefixes of a run as an interval; the
+// hulls, bounds and run updates are the kernel's (dss.hpp, RunState).
 // Complexity: O(log h) per run, h = hull vertices (O(log n) for a DSS).
 #pragma once
 
@@ -28,6 +30,7 @@
 #include <span>
 #include <vector>
 
+#include "dss.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/step.hpp"
 
@@ -42,33 +45,16 @@ public:
         std::int64_t hi;     ///< 1 <= m <= alive (empty when lo > hi)
     };
 
-    void reset() noexcept;
+    void reset() noexcept { st_.reset(); }
     /// Precondition: the word is alive, k >= 1, letter is 0 or 1.
     Probe probe(int letter, std::int64_t k) const noexcept;
     /// Appends the run. Precondition: probe(letter, k).alive == k.
     void commit(int letter, std::int64_t k);
-    std::int64_t zeros() const noexcept { return p_; }
-    std::int64_t ones() const noexcept { return q_; }
+    std::int64_t zeros() const noexcept { return st_.p; }
+    std::int64_t ones() const noexcept { return st_.q; }
 
 private:
-    struct Pt {
-        std::int64_t p, q;
-    };
-    struct Frac {  // n/d with d > 0; set == false: no bound yet
-        std::int64_t n = 0, d = 1;
-        bool set = false;
-    };
-    Probe probe_zeros(std::int64_t k) const noexcept;
-    Probe probe_ones(std::int64_t k) const noexcept;
-    void push_zero(Pt c);
-    void push_one(Pt c);
-
-    std::vector<Pt> zeros_hull_;  // lower hull of the 0-positions
-    std::vector<Pt> ones_hull_;   // upper hull of the 1-positions (top point per column)
-    Frac lo_, hi_;
-    Frac r_;  // max u.q / (u.p + 1) over the 1-positions u
-    Frac s_;  // min (z.q + 1) / z.p over the 0-positions z with z.p > 0
-    std::int64_t p_ = 0, q_ = 0;
+    dss::RunState st_;  // hulls and slope bounds (dss.hpp)
 };
 
 /// One segment under a linear profile (not patent) grown run by run: the

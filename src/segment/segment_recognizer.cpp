@@ -13,7 +13,7 @@ SegmentRecognizer::SegmentRecognizer(Profile p, int axes)
 }
 
 void SegmentRecognizer::reset() noexcept {
-    length_ = 0;
+    length_ = best_ = 0;
     delta_ = {};
     for (int i = 0; i < kMaxAxes; ++i) {
         sign_[i] = 0;
@@ -59,6 +59,7 @@ bool SegmentRecognizer::extend(Step s) {
     } else {
         alive = words_[0].extend(step_axis(s, 0) != 0 ? 0 : 1);
     }
+    if (valid()) best_ = length_;
     return alive;
 }
 
@@ -69,6 +70,11 @@ bool SegmentRecognizer::valid() const noexcept {
     for (int i = 0; i < axes_; ++i)
         if (!words_[i].valid()) return false;
     return true;
+}
+
+ProfileRecognizer make_recognizer(Profile p, int axes) {
+    if (p == Profile::patent) return PatentRecognizer{};
+    return SegmentRecognizer(p, axes);
 }
 
 }  // namespace stepzip

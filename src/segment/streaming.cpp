@@ -1,25 +1,24 @@
 // Streaming greedy segmenter. See streaming.hpp.
 //
-// Linear profiles: the held steps are read into one SegmentRecognizer, which
-// records the longest exact prefix; when a held step cannot extend the
-// segment (a hard limit, or the word is no longer a digital straight
-// segment) that prefix is final, it is emitted and the steps after it are
-// read again into a fresh recognizer, exactly as the batch greedy segmenter
-// restarts after its cut. `patent` profile: the batch greedy's candidates
-// are bounded by the reach (same signs, at most kPatentMaxSegment steps), so
-// a segment is final once a held step lies beyond the reach.
+// The held steps are read into the profile's recognizer (make_recognizer():
+// a SegmentRecognizer, or the PatentRecognizer), which knows the longest
+// exact prefix of what it read; when a held step cannot extend the segment
+// (a hard limit, or no longer segment can be exact) that prefix is final, it
+// is emitted and the steps after it are read again into a fresh recognizer,
+// exactly as the batch greedy segmenter restarts after its cut.
 #include "stepzip/streaming.hpp"
 
 #include <algorithm>
 #include <string>
+#include <variant>
 
-#include "stepzip/segment/segmenters.hpp"
+#include "stepzip/segment/recognizer.hpp"
 
 namespace stepzip {
 
 StreamingSegmenter::StreamingSegmenter(Profile p, int axes, std::size_t max_held)
     : profile_(p), axes_(axes), max_held_(max_held) {
-    if (p != Profile::patent && valid()) rec_.emplace(p, axes);
+    if (valid()) rec_ = make_recognizer(p, axes);
 }
 
 bool StreamingSegmenter::valid() const noexcept {
@@ -61,41 +60,26 @@ Result<void> StreamingSegmenter::push(std::span<const Step> steps, std::vector<S
 void StreamingSegmenter::finish(std::vector<Segment>& out) {
     if (valid()) drain(out, true);
     held_.clear();
-    if (rec_) rec_->reset();
-    scanned_ = best_ = 0;
-    broken_ = false;
-    patent_sx_ = patent_sy_ = 0;
+    restart();
     pushed_ = forced_ = 0;
 }
 
 void StreamingSegmenter::drain(std::vector<Segment>& out, bool flush) {
     for (;;) {
-        if (rec_) {
-            while (!broken_ && scanned_ < held_.size()) {
-                const Step s = held_[scanned_];
-                if (!rec_->can_extend(s)) {
-                    broken_ = true;
-                    break;
+        std::visit(
+            [&](auto& rec) {
+                while (!broken_ && scanned_ < held_.size()) {
+                    const Step s = held_[scanned_];
+                    if (!rec.can_extend(s)) {
+                        broken_ = true;
+                        break;
+                    }
+                    const bool alive = rec.extend(s);
+                    ++scanned_;
+                    if (!alive) broken_ = true;
                 }
-                const bool alive = rec_->extend(s);
-                ++scanned_;
-                if (rec_->valid()) best_ = scanned_;
-                if (!alive) broken_ = true;
-            }
-        } else {
-            while (!broken_ && scanned_ < held_.size()) {
-                const Step s = held_[scanned_];
-                const int dx = step_axis(s, 0), dy = step_axis(s, 1);
-                if ((dx != 0 && patent_sx_ != 0 && dx != patent_sx_) ||
-                    (dy != 0 && patent_sy_ != 0 && dy != patent_sy_)) {
-                    broken_ = true;
-                    break;
-                }
-                if (dx != 0) patent_sx_ = dx;
-                if (dy != 0) patent_sy_ = dy;
-                if (++scanned_ >= static_cast<std::size_t>(kPatentMaxSegment)) broken_ = true;
-            }
-        }
+            },
+            *rec_);
         if (held_.empty() || !(broken_ || flush)) return;
         cut(out);
     }
@@ -103,21 +87,21 @@ void StreamingSegmenter::drain(std::vector<Segment>& out, bool flush) {
 
 void StreamingSegmenter::cut(std::vector<Segment>& out) {
     const std::span<const Step> held(held_);
-    std::size_t m;
-    if (rec_)
-        m = std::max<std::size_t>(best_, 1);
-    else
-        m = static_cast<std::size_t>(GreedySegmenter(profile_, axes_).longest(held));
+    auto m = static_cast<std::size_t>(
+        std::max<std::int64_t>(std::visit([](const auto& rec) { return rec.longest_valid(); }, *rec_), 1));
     auto seg = fit_segment(profile_, held.first(m), axes_);
     // As in the batch greedy: never reached when the recognizer is right; a
     // shorter cut keeps the output exact, and one step always fits.
     while (!seg && m > 1) seg = fit_segment(profile_, held.first(--m), axes_);
     out.push_back(*seg);
     held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(m));
-    if (rec_) rec_->reset();
-    scanned_ = best_ = 0;
+    restart();
+}
+
+void StreamingSegmenter::restart() noexcept {
+    if (rec_) std::visit([](auto& rec) { rec.reset(); }, *rec_);
+    scanned_ = 0;
     broken_ = false;
-    patent_sx_ = patent_sy_ = 0;
 }
 
 }  // namespace stepzip

@@ -7,18 +7,10 @@
 
 namespace stepzip::detail {
 
+using dss::floor_div;
+using dss::wide;
+
 namespace {
-// As in run_word.cpp: every coordinate, numerator and denominator is at most
-// kMaxSegmentTotal + 1 <= 2^30 + 1, so products of two and sums of two
-// products fit in 64 bits.
-static_assert(kMaxSegmentTotal <= (std::int64_t{1} << 30));
-using wide = std::int64_t;
-
-wide floor_div(wide a, wide b) {  // b > 0
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-wide ceil_div(wide a, wide b) { return -floor_div(-a, b); }
-
 // Words of up to kShortLetters letters are decided by a table made once, on
 // first use (about 10^6 simple operations: too many for some compilers'
 // constant evaluation). A word with totals (A, B) is exact iff the values
@@ -81,183 +73,29 @@ inline int letter_of(Step s, bool eight) {
 
 TwoAxisGreedy::TwoAxisGreedy(Profile p) : profile_(p), eight_(profile_eight_connected(p)) {
     assert(p != Profile::patent);
-    reset();
 }
 
-void TwoAxisGreedy::reset() noexcept {
-    zeros_hull_.clear();
-    ones_hull_.clear();
-    lo_ = {-1, 1};
-    hi_ = {1, 0};
-    r_ = {0, 1};
-    s_ = {1, 0};
-    p_ = q_ = 0;
-}
-
-// Zeros at (p + j, q), j = 0..k-1 (see RunWord::probe_zeros). The valid
-// prefixes of the run are the P = p + m with lo < q/P < hi and
-// P * r < q: upper bounds on P from lo and r, a lower bound from hi.
-inline std::int64_t TwoAxisGreedy::zeros(std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t p = p_, q = q_;
-    std::int64_t alive = k;
-    if (lo_.n > 0 && !ones_hull_.empty()) {
-        const auto& h = ones_hull_;
-        std::size_t a = 0, b = h.size() - 1;
-        while (a < b) {
-            const std::size_t mid = (a + b) / 2;
-            const wide rise = wide(lo_.d) * (h[mid + 1].q - h[mid].q) -
-                              wide(lo_.n) * (h[mid + 1].p - h[mid].p);
-            if (rise > 0) a = mid + 1;
-            else b = mid;
-        }
-        // Zero j kills the word iff lo.n * j >= val.
-        const wide val = wide(q - h[a].q) * lo_.d - wide(lo_.n) * (p - h[a].p);
-        if (wide(lo_.n) * (k - 1) >= val) alive = std::clamp<wide>(ceil_div(val, lo_.n), 0, k);
-    }
+// A run of k letters (see RunWord::probe): the largest valid prefix is the
+// largest count x within the upper bounds, if it passes the lower one; the
+// whole run is tried first by multiplications, a division only if it fails.
+inline std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
+    const std::int64_t alive = st_.alive(letter, k);
     best = 0;
     if (alive == 0) return 0;
-    if (q == 0) {
+    const std::int64_t x0 = letter == 0 ? st_.p : st_.q;
+    if ((letter == 0 ? st_.q : st_.p) == 0) {
         best = alive;
         return alive;
     }
-    std::int64_t m = alive;
-    const wide P = p + m;
-    if (!(lo_.n * P < q * lo_.d && r_.n * P < q * r_.d)) {
-        wide pmax = P;
-        if (lo_.n > 0) pmax = std::min(pmax, floor_div(q * lo_.d - 1, lo_.n));
-        if (r_.n > 0) pmax = std::min(pmax, floor_div(q * r_.d - 1, r_.n));
-        m = pmax - p;
-        if (m < 1) return alive;
+    const dss::RunState::Bounds b = st_.bounds(letter);
+    wide x = x0 + alive;
+    if (!(b.b1 * x < b.a1 && b.b2 * x < b.a2)) {
+        if (b.b1 > 0) x = std::min(x, floor_div(b.a1 - 1, b.b1));
+        if (b.b2 > 0) x = std::min(x, floor_div(b.a2 - 1, b.b2));
+        if (x - x0 < 1) return alive;
     }
-    if ((p + m) * hi_.n > q * hi_.d) best = m;
+    if (x * b.c > b.e) best = x - x0;
     return alive;
-}
-
-// Ones at (p, q + j) (see RunWord::probe_ones): Q = q + m with
-// lo < Q/p < hi and Q * s < p.
-inline std::int64_t TwoAxisGreedy::ones(std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t p = p_, q = q_;
-    std::int64_t alive = k;
-    if (hi_.d > 0 && !zeros_hull_.empty()) {
-        const auto& h = zeros_hull_;
-        std::size_t a = 0, b = h.size() - 1;
-        while (a < b) {
-            const std::size_t mid = (a + b) / 2;
-            const wide fall = wide(hi_.d) * (h[mid + 1].q - h[mid].q) -
-                              wide(hi_.n) * (h[mid + 1].p - h[mid].p);
-            if (fall < 0) a = mid + 1;
-            else b = mid;
-        }
-        const wide val = wide(hi_.n) * (p - h[a].p) - wide(hi_.d) * (q - h[a].q);
-        if (wide(hi_.d) * (k - 1) >= val) alive = std::clamp<wide>(ceil_div(val, hi_.d), 0, k);
-    }
-    best = 0;
-    if (alive == 0) return 0;
-    if (p == 0) {
-        best = alive;
-        return alive;
-    }
-    std::int64_t m = alive;
-    const wide Q = q + m;
-    if (!(Q * hi_.d < hi_.n * p && Q * s_.d < p * s_.n)) {
-        wide qmax = Q;
-        if (hi_.d > 0) qmax = std::min(qmax, floor_div(hi_.n * p - 1, hi_.d));
-        if (s_.d > 0) qmax = std::min(qmax, floor_div(p * s_.n - 1, s_.d));
-        m = qmax - q;
-        if (m < 1) return alive;
-    }
-    if (lo_.n * p < (q + m) * lo_.d) best = m;
-    return alive;
-}
-
-inline void TwoAxisGreedy::push_zero(Pt c) {
-    // The new upper bound: the smallest slope from a 1-position strictly
-    // left of c (tangent to the upper hull).
-    std::size_t m = ones_hull_.size();
-    if (m > 0 && ones_hull_[m - 1].p == c.p) --m;
-    if (m > 0) {
-        const Pt* h = ones_hull_.data();
-        std::size_t a = 0, b = m - 1;
-        while (a < b) {
-            const std::size_t mid = (a + b) / 2;
-            // slope(h[mid+1], c) < slope(h[mid], c)
-            if (wide(c.q - h[mid + 1].q) * (c.p - h[mid].p) <
-                wide(c.q - h[mid].q) * (c.p - h[mid + 1].p))
-                a = mid + 1;
-            else
-                b = mid;
-        }
-        const std::int64_t n = c.q - h[a].q, d = c.p - h[a].p;
-        if (wide(n) * hi_.d < wide(hi_.n) * d) hi_ = {n, d};
-    }
-    std::size_t z = zeros_hull_.size();
-    while (z >= 2) {
-        const Pt& u = zeros_hull_[z - 2];
-        const Pt& v = zeros_hull_[z - 1];
-        if (wide(v.p - u.p) * (c.q - u.q) - wide(v.q - u.q) * (c.p - u.p) > 0) break;
-        --z;
-    }
-    zeros_hull_.resize(z);
-    zeros_hull_.push_back(c);
-}
-
-inline void TwoAxisGreedy::push_one(Pt c) {
-    // The new lower bound: the largest slope from a 0-position (all left of c).
-    const std::size_t m = zeros_hull_.size();
-    if (m > 0) {
-        const Pt* h = zeros_hull_.data();
-        std::size_t a = 0, b = m - 1;
-        while (a < b) {
-            const std::size_t mid = (a + b) / 2;
-            // slope(h[mid], c) < slope(h[mid+1], c)
-            if (wide(c.q - h[mid].q) * (c.p - h[mid + 1].p) <
-                wide(c.q - h[mid + 1].q) * (c.p - h[mid].p))
-                a = mid + 1;
-            else
-                b = mid;
-        }
-        const std::int64_t n = c.q - h[a].q, d = c.p - h[a].p;
-        if (wide(lo_.n) * d < wide(n) * lo_.d) lo_ = {n, d};
-    }
-    std::size_t z = ones_hull_.size();
-    if (z > 0 && ones_hull_[z - 1].p == c.p) --z;
-    while (z >= 2) {
-        const Pt& u = ones_hull_[z - 2];
-        const Pt& v = ones_hull_[z - 1];
-        if (wide(v.p - u.p) * (c.q - u.q) - wide(v.q - u.q) * (c.p - u.p) < 0) break;
-        --z;
-    }
-    ones_hull_.resize(z);
-    ones_hull_.push_back(c);
-}
-
-inline void TwoAxisGreedy::commit_zeros(std::int64_t k) {
-    if (k >= 2) {
-        // The run's first zero joins the hull, but its tangent is never the
-        // smallest: every 1-position left of it sees the run's last zero
-        // at a smaller slope (same rise, longer run).
-        std::size_t z = zeros_hull_.size();
-        const Pt c{p_, q_};
-        while (z >= 2) {
-            const Pt& u = zeros_hull_[z - 2];
-            const Pt& v = zeros_hull_[z - 1];
-            if (wide(v.p - u.p) * (c.q - u.q) - wide(v.q - u.q) * (c.p - u.p) > 0) break;
-            --z;
-        }
-        zeros_hull_.resize(z);
-        zeros_hull_.push_back(c);
-    }
-    const std::int64_t last = p_ + k - 1;
-    push_zero({last, q_});
-    if (last > 0 && wide(q_ + 1) * s_.d < wide(s_.n) * last) s_ = {q_ + 1, last};
-    p_ += k;
-}
-
-inline void TwoAxisGreedy::commit_ones(std::int64_t k) {
-    const std::int64_t top = q_ + k - 1;
-    push_one({p_, top});
-    if (wide(r_.n) * (p_ + 1) < wide(top) * r_.d) r_ = {top, p_ + 1};
-    q_ += k;
 }
 
 // The first step of a letter in a segment: signs are fixed per letter, and
@@ -305,7 +143,7 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
         }
     }
     short_ = false;
-    reset();
+    st_.reset();
     runs_.clear();
     value_[0] = value_[1] = 0;
     std::int64_t best = 1, length = 0;
@@ -323,15 +161,15 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
         const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
         if (kk <= 0) break;
         std::int64_t in_run;
-        const std::int64_t alive = letter == 0 ? zeros(kk, in_run) : ones(kk, in_run);
+        const std::int64_t alive = read_run(letter, kk, in_run);
         if (in_run > 0) {
             best = length + in_run;
-            best_count_[0] = p_ + (letter == 0 ? in_run : 0);
-            best_count_[1] = q_ + (letter == 1 ? in_run : 0);
+            best_count_[0] = st_.p + (letter == 0 ? in_run : 0);
+            best_count_[1] = st_.q + (letter == 1 ? in_run : 0);
         }
         if (alive < k) break;
-        if (letter == 0) commit_zeros(k);
-        else commit_ones(k);
+        if (letter == 0) st_.commit_zeros(k);
+        else st_.commit_ones(k);
         length += k;
         pos = e;
     }
@@ -339,14 +177,6 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
 }
 
 namespace {
-std::optional<std::int64_t> pick(Profile p, std::int64_t a, std::int64_t b, std::int64_t lo,
-                                 std::int64_t hi) {
-    const PhaseRange r = phase_range(p, a, b);
-    lo = std::max(lo, r.lo);
-    hi = std::min(hi, r.hi);
-    if (lo >= hi) return std::nullopt;
-    return std::clamp(default_phase(p, a, b), lo, hi - 1);
-}
 // The signed move of each axis in step s, times n.
 void add_moves(Point& d, Step s, std::int64_t n) {
     d[0] += n * step_axis(s, 0);
@@ -409,7 +239,7 @@ std::optional<Segment> TwoAxisGreedy::fit(std::int64_t m) const {
             q += k;
         }
     }
-    const auto f = pick(profile_, fa, b, lo, hi);
+    const auto f = dss::pick_phase(profile_, fa, b, lo, hi);
     if (!f) return std::nullopt;
     seg.phase[0] = *f;
     return seg;

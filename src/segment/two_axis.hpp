@@ -7,7 +7,7 @@
 // holds at most two distinct step values, one per letter, and they must be
 // compatible (one sign per axis; for the 8-connected profiles the axis step
 // is a projection of the diagonal). TwoAxisGreedy reads runs of identical
-// steps into one RunWord-equivalent state held in place (no per-axis loops,
+// steps into the kernel's run state (dss.hpp, as RunWord; no per-axis loops,
 // no profile switches) and decides each run with multiplications only; a
 // division is needed only on the run where the word stops being a digital
 // straight segment or where the run's last step is not a valid end. Its
@@ -21,6 +21,7 @@
 #include <span>
 #include <vector>
 
+#include "dss.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
 #include "stepzip/step.hpp"
@@ -40,30 +41,14 @@ public:
     std::optional<Segment> fit(std::int64_t m) const;
 
 private:
-    struct Pt {
-        std::int64_t p, q;
-    };
-    struct Frac {  // n/d; d == 0 stands for +infinity where noted
-        std::int64_t n, d;
-    };
-    void reset() noexcept;
-    // A run of k letters 0 (ones): returns how many keep the word a DSS and
-    // sets `best` to the largest valid prefix length of the run (0: none).
-    std::int64_t zeros(std::int64_t k, std::int64_t& best) const noexcept;
-    std::int64_t ones(std::int64_t k, std::int64_t& best) const noexcept;
-    void commit_zeros(std::int64_t k);
-    void commit_ones(std::int64_t k);
-    void push_zero(Pt c);
-    void push_one(Pt c);
+    // A run of k letters `letter`: returns how many keep the word a DSS and
+    // sets `best` to the largest valid prefix length of the run (0: none),
+    // with multiplications only unless the run is cut.
+    std::int64_t read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept;
 
     Profile profile_;
     bool eight_;
-    // Word state, as RunWord (run_word.hpp), with sentinels instead of flags:
-    // lo_ = -1/1 when unset, hi_ = 1/0 (+infinity), r_ = 0/1, s_ = 1/0.
-    std::vector<Pt> zeros_hull_;
-    std::vector<Pt> ones_hull_;
-    Frac lo_{}, hi_{}, r_{}, s_{};
-    std::int64_t p_ = 0, q_ = 0;
+    dss::RunState st_;  // hulls and slope bounds, as RunWord's (dss.hpp)
     // The runs read by the last longest(): letter of the first run, run
     // lengths (letters alternate), the step value of each letter.
     int first_letter_ = 0;

@@ -1,6 +1,6 @@
 // stepzip — online recognition of one exact segment (reverse interpolation).
 //
-// Every linear profile except `patent` reduces to one binary rule per
+// Every linear profile except `patent` (PatentRecognizer below) reduces to one binary rule per
 // evaluation function (the "two-letter word"): with counts (a, b) and phase
 // F0, F >= 0 emits letter 0 and F -= b, F < 0 emits letter 1 and F += a.
 //   eval4: letter 0 = x-step, letter 1 = y-step, (a, b) = (|dx|, |dy|);
@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "stepzip/profile.hpp"
@@ -85,6 +86,8 @@ public:
     bool extend(Step s);
     /// The steps read so far form one exact segment (some phase reproduces them).
     bool valid() const noexcept;
+    /// Length of the longest prefix of the steps read that was valid (0: none).
+    std::int64_t longest_valid() const noexcept { return best_; }
     std::int64_t length() const noexcept { return length_; }
     const Point& delta() const noexcept { return delta_; }
 
@@ -93,11 +96,62 @@ private:
     int axes_;
     bool eight_;
     std::int64_t length_ = 0;
+    std::int64_t best_ = 0;
     Point delta_{};
     int sign_[kMaxAxes] = {};
     unsigned always_ = 0;  // axes that moved on every tick (8-connected)
     WordRecognizer words_[kMaxAxes];
 };
+
+/// Longest segment accepted under the `patent` profile. Its forward mode is
+/// path dependent (the adder sums the remaining counters, i.e. a swept area),
+/// so a candidate end point is checked exactly in O(length); this cap bounds
+/// that work to O(cap) per candidate.
+inline constexpr std::int64_t kPatentMaxSegment = 1024;
+
+/// Grows one segment under the `patent` profile (SU 1089551 forward mode,
+/// Fig. 4), step by step. The hard limits (one axis per step, one sign per
+/// axis, kPatentMaxSegment steps) are checked by can_extend(). The forward
+/// mode adds the *remaining* counters, so whether a prefix is exact depends
+/// on its own totals: each free step (both counters non-zero) bounds F0 by
+/// one linear constraint, intersected with phase_range(patent, X, Y); the
+/// check stops at the first contradiction.
+/// Invariant: the steps read so far keep one axis per step and one sign per
+/// axis. Complexity: O(1) per extend(); valid() O(length);
+/// longest_valid() O(length) per candidate, longest first. O(length) memory.
+/// Not thread-safe (an object per thread).
+class PatentRecognizer {
+public:
+    void reset() noexcept;
+    /// True when `s` may follow the steps read so far: one axis, a sign that
+    /// agrees with the segment's, fewer than kPatentMaxSegment steps read.
+    bool can_extend(Step s) const noexcept;
+    /// Appends `s` (precondition: can_extend(s)). Returns false once the cap
+    /// is reached: no longer segment is accepted.
+    bool extend(Step s);
+    /// The steps read so far form one exact segment.
+    bool valid() const noexcept;
+    /// Length of the longest prefix of the steps read that is one exact
+    /// segment (1 when only one step is; 0 when none was read).
+    std::int64_t longest_valid() const noexcept;
+    std::int64_t length() const noexcept { return static_cast<std::int64_t>(ystep_.size()); }
+    const Point& delta() const noexcept { return delta_; }
+
+private:
+    // Is the prefix of m steps, xs of them x-steps, exact under some phase
+    // in its phase range?
+    bool exact(std::int64_t m, std::int64_t xs) const noexcept;
+
+    std::vector<std::uint8_t> ystep_;  // per step read: 1 for a y-step
+    Point delta_{};
+};
+
+/// The recognizer of a profile: PatentRecognizer for `patent`, a
+/// SegmentRecognizer for the linear profiles. Both have reset(),
+/// can_extend(), extend(), valid(), longest_valid(), length() and delta().
+using ProfileRecognizer = std::variant<SegmentRecognizer, PatentRecognizer>;
+/// Precondition: 2 <= axes <= profile_max_axes(p).
+ProfileRecognizer make_recognizer(Profile p, int axes);
 
 /// The one segment that reproduces `steps` exactly under `p` (any profile,
 /// patent included), with each phase the valid one nearest the profile's

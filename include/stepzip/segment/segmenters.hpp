@@ -14,16 +14,11 @@
 
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
+#include "stepzip/segment/recognizer.hpp"
 #include "stepzip/segmenter.hpp"
 #include "stepzip/step.hpp"
 
 namespace stepzip {
-
-/// Longest segment accepted under the `patent` profile. Its forward mode is
-/// path dependent (the adder sums the remaining counters, i.e. a swept area),
-/// so a candidate end point is checked exactly in O(length); this cap bounds
-/// that work to O(cap) per candidate.
-inline constexpr std::int64_t kPatentMaxSegment = 1024;
 
 /// Ends examined per start by the optimal segmenter beyond which only the
 /// greedy cut's own segments are offered (see OptimalSegmenter).
@@ -39,9 +34,10 @@ inline constexpr std::int64_t kPatentOptimalWindow = 64;
 /// of exact words, longer ones run by run with multiplications only.
 /// Complexity: O(log h) per run read; a step is read again only when it lies
 /// past the cut but inside the broken DSS (about one period of the line).
-/// `patent` profile: candidates from the longest (at most kPatentMaxSegment)
-/// down, each checked in O(length) with an early exit on the first
-/// contradiction.
+/// `patent` profile (PatentRecognizer, recognizer.hpp): the steps within the
+/// hard limits are read, then candidates from the longest (at most
+/// kPatentMaxSegment) down, each checked in O(length) with an early exit on
+/// the first contradiction. The driver itself does not look at the profile.
 class GreedySegmenter {
 public:
     GreedySegmenter(Profile p, int axes) : profile_(p), axes_(axes) {}

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "../../common/bytes.hpp"
 #include "stepzip/document.hpp"
 
 namespace stepzip::io {
@@ -30,51 +31,11 @@ inline std::size_t layout_cap(std::size_t block_steps) {
     return block_steps < 256 ? 256 : block_steps;
 }
 
-// ---- layout byte code helpers ----------------------------------------------
+// ---- layout byte code: the common byte layer (src/common/bytes.hpp) ---------
 
-inline void put_varint(std::string& out, std::uint64_t v) {
-    while (v >= 0x80) {
-        out.push_back(static_cast<char>((v & 0x7F) | 0x80));
-        v >>= 7;
-    }
-    out.push_back(static_cast<char>(v));
-}
-
-inline void put_bytes(std::string& out, std::string_view bytes) {
-    put_varint(out, bytes.size());
-    out.append(bytes);
-}
-
+using wire::put_varint;
 /// Reads a layout; every getter returns false at a truncated or malformed field.
-struct LayoutCursor {
-    const unsigned char* p;
-    const unsigned char* end;
-    explicit LayoutCursor(std::string_view s)
-        : p(reinterpret_cast<const unsigned char*>(s.data())), end(p + s.size()) {}
-    bool done() const { return p == end; }
-    bool byte(std::uint8_t& b) {
-        if (p == end) return false;
-        b = *p++;
-        return true;
-    }
-    bool varint(std::uint64_t& v) {
-        v = 0;
-        for (int shift = 0; shift < 64; shift += 7) {
-            if (p == end) return false;
-            const std::uint8_t b = *p++;
-            v |= std::uint64_t{b & 0x7Fu} << shift;
-            if ((b & 0x80) == 0) return shift < 63 || b <= 1;
-        }
-        return false;
-    }
-    bool bytes(std::string_view& s) {
-        std::uint64_t n = 0;
-        if (!varint(n) || n > static_cast<std::uint64_t>(end - p)) return false;
-        s = std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n));
-        p += n;
-        return true;
-    }
-};
+using LayoutCursor = wire::Cursor;
 
 // ---- number spelling --------------------------------------------------------
 

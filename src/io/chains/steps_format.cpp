@@ -114,6 +114,8 @@ private:
         run_kind_ = kind;
         ++run_n_;
     }
+    // The current block, with its layout and axes (flushes the pending runs).
+    Block take_block(bool open);
     void cut(bool open);
     int axes() const {
         int a = 2;
@@ -138,7 +140,7 @@ private:
     bool finished_ = false;
 };
 
-void StepsParser::cut(bool open) {
+Block StepsParser::take_block(bool open) {
     flush_all();
     Block b = std::move(blk_);
     b.axes = axes();
@@ -146,6 +148,11 @@ void StepsParser::cut(bool open) {
     b.open = open;
     b.layout = std::move(layout_);
     layout_.clear();
+    return b;
+}
+
+void StepsParser::cut(bool open) {
+    Block b = take_block(open);
     Point end{};
     if (open) end = b.chains.back().end();
     ready.push_back(std::move(b));
@@ -189,13 +196,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     }
     if (last) {
         finished_ = true;
-        flush_all();
-        Block b = std::move(blk_);
-        b.axes = axes();
-        for (Chain& c : b.chains) c.axes = b.axes;
-        b.open = false;
-        b.layout = std::move(layout_);
-        ready.push_back(std::move(b));
+        ready.push_back(take_block(false));
     }
     return {};
 }
@@ -240,7 +241,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
     bool first = true;
     while (!lc.done()) {
         std::uint8_t op = 0;
-        lc.byte(op);
+        lc.u8(op);
         const std::uint8_t kind = op & 0xC0;
         const std::uint8_t arg = op & 0x3F;
         if (op == kPaced) {

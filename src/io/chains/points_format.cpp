@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "document_internal.hpp"
+#include "line_scanner.hpp"
 
 namespace stepzip::io {
 namespace {
@@ -33,10 +33,8 @@ constexpr std::uint8_t kCrlf = 0x10;
 std::string_view style_sep(std::uint8_t style) { return kSeparators[style & 3]; }
 std::string_view style_eol(std::uint8_t style) { return (style & kCrlf) ? "\r\n" : "\n"; }
 
-bool is_ws(unsigned char c) { return c == ' ' || c == '\t'; }
-bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
 
-class PointsLayout {
+class PointsLayout : public LayoutText<PointsLayout, kVerbatim> {
 public:
     std::uint8_t style() const { return style_; }
     void set_style(std::uint8_t s) {
@@ -60,26 +58,14 @@ public:
             verbatim(bytes);
         }
     }
-    void verbatim(std::string_view s) {
-        if (s.empty()) return;
-        flush_runs();
-        verb_.append(s);
-    }
-    std::string& ops() {
-        flush_runs();
-        flush_verbatim();
-        return out_;
-    }
-    std::size_t size() const { return out_.size() + verb_.size(); }
+    /// The layout so far; the next block starts in style 0.
     std::string take() {
-        ops();
-        std::string s = std::move(out_);
-        out_.clear();
         style_ = 0;
-        return s;
+        return LayoutText::take();
     }
 
 private:
+    friend class LayoutText<PointsLayout, kVerbatim>;
     void flush_runs() {
         if (chains_ != 0) {
             out_.push_back(static_cast<char>(kChains));
@@ -93,13 +79,6 @@ private:
         }
         clean_ = false;
     }
-    void flush_verbatim() {
-        if (verb_.empty()) return;
-        out_.push_back(static_cast<char>(kVerbatim));
-        put_bytes(out_, verb_);
-        verb_.clear();
-    }
-    std::string out_, verb_;
     std::uint64_t chains_ = 0, lines_ = 0;
     bool clean_ = false;  // the current chain's lines are all in `lines_`
     std::uint8_t style_ = 0;
@@ -115,68 +94,28 @@ struct ParsedLine {
     std::size_t end_col = 0;  // column just past the last coordinate
 };
 
-class PointsParser final : public FormatParser {
+class PointsParser final : public LineScanner<PointsParser, PointsLayout> {
 public:
+    // The axis count is the column count of the file's first point.
     PointsParser(std::string source, std::size_t block_steps)
-        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {}
-
-    Result<void> feed(std::string_view data, bool last) override;
-    std::uint64_t line() const override { return line_; }
+        : LineScanner(std::move(source), block_steps, 0) {}
 
 private:
-    bool fail(Errc code, std::uint64_t column, std::string_view what) {
-        err_ = make_error(code, at(source_, line_, column, what));
-        failed_ = true;
-        return false;
-    }
+    friend class LineScanner<PointsParser, PointsLayout>;
+
+    // The grammar, for LineScanner.
+    const unsigned char* scan(const unsigned char* p, const unsigned char* end);
+    bool end_of_input() { return buf_.empty() || line_done(0); }
+    void before_open_cut() {}
+
     bool line_done(int term);
     bool parse(std::string_view s, ParsedLine& pl);
     bool point_line(const ParsedLine& pl, int term);
-    const unsigned char* run_comment(const unsigned char* p, const unsigned char* end);
-    bool full() const { return blk_steps_ >= block_steps_ || lb_.size() >= cap_; }
-    void cut(bool open);
-    void emit_last();
 
-    std::string source_;
-    std::size_t block_steps_;
-    std::size_t cap_;
-    std::uint64_t line_ = 1;
-    std::uint64_t col_ = 1;
-    bool in_comment_ = false;
     bool ws_only_ = true;  // buf_ holds spaces and tabs only
     std::string buf_;
-    int axes_ = 0;  // column count of the file, 0 before the first point
-    bool in_chain_ = false;
     Point prev_{};
-
-    Block blk_;
-    std::size_t blk_steps_ = 0;
-    PointsLayout lb_;
-    bool emitted_ = false;
-    bool failed_ = false;
-    bool finished_ = false;
-    Error err_;
 };
-
-void PointsParser::cut(bool open) {
-    Block b = std::move(blk_);
-    b.axes = axes_ != 0 ? axes_ : 2;
-    b.open = open;
-    b.layout = lb_.take();
-    if (b.layout.empty()) b.layout.push_back(static_cast<char>(kNop));
-    ready.push_back(std::move(b));
-    emitted_ = true;
-    blk_ = Block{};
-    blk_.axes = axes_ != 0 ? axes_ : 2;
-    blk_steps_ = 0;
-    if (open) {
-        blk_.continues = true;
-        Chain c;
-        c.axes = axes_;
-        c.start = prev_;
-        blk_.chains.push_back(std::move(c));
-    }
-}
 
 bool PointsParser::parse(std::string_view s, ParsedLine& pl) {
     const std::size_t len = s.size();
@@ -301,12 +240,12 @@ bool PointsParser::point_line(const ParsedLine& pl, int term) {
     std::string& o = lb_.ops();
     o.push_back(static_cast<char>(kPoint));
     o.push_back(static_cast<char>(flags));
-    if (flags & kLead) put_bytes(o, pl.lead);
+    if (flags & kLead) wire::put_sized(o, pl.lead);
     if (flags & kSpell)
         for (int a = 0; a < pl.count; ++a) put_spelling(o, pl.spell[a]);
     if (flags & kGaps)
-        for (int a = 0; a + 1 < pl.count; ++a) put_bytes(o, pl.gap[a]);
-    if (flags & kTail) put_bytes(o, tail);
+        for (int a = 0; a + 1 < pl.count; ++a) wire::put_sized(o, pl.gap[a]);
+    if (flags & kTail) wire::put_sized(o, tail);
     return true;
 }
 
@@ -340,90 +279,30 @@ bool PointsParser::line_done(int term) {
     return true;
 }
 
-const unsigned char* PointsParser::run_comment(const unsigned char* p, const unsigned char* end) {
-    while (p < end) {
-        if (lb_.size() >= cap_) cut(in_chain_);
-        const std::size_t room = cap_ - lb_.size();
-        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
-        const unsigned char* q = p;
-        while (q < lim && *q != '\n' && !is_binary_byte(*q)) ++q;
-        lb_.verbatim(std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(q - p)));
-        col_ += static_cast<std::uint64_t>(q - p);
-        p = q;
-        if (q == lim) continue;
-        if (*q == '\n') {
-            lb_.verbatim("\n");
-            ++line_;
-            col_ = 1;
-            in_comment_ = false;
-            if (!in_chain_ && full()) cut(false);
-            return p + 1;
-        }
-        fail(Errc::syntax, col_, describe_byte(*q) + " in a comment (text formats hold no binary bytes)");
-        return nullptr;
-    }
-    return p;
-}
-
-void PointsParser::emit_last() {
-    if (!blk_.chains.empty() || lb_.size() != 0 || !emitted_) {
-        Block b = std::move(blk_);
-        b.axes = axes_ != 0 ? axes_ : 2;
-        b.open = false;
-        b.layout = lb_.take();
-        if (b.layout.empty() && !b.chains.empty()) b.layout.push_back(static_cast<char>(kNop));
-        ready.push_back(std::move(b));
-        emitted_ = true;
-        blk_ = Block{};
-    }
-}
-
-Result<void> PointsParser::feed(std::string_view data, bool last) {
-    if (failed_) return err_;
-    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
-    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
-    const auto* end = p + data.size();
-    while (p < end) {
-        if (in_comment_) {
-            p = run_comment(p, end);
-            if (p == nullptr) return err_;
-            continue;
-        }
+const unsigned char* PointsParser::scan(const unsigned char* p, const unsigned char* end) {
+    while (p < end && !in_comment()) {
         const unsigned char c = *p++;
         if (c == '\n') {
-            if (!line_done(1)) return err_;
-            ++line_;
-            col_ = 1;
+            if (!line_done(1)) return nullptr;
+            next_line();
             ws_only_ = true;
             continue;
         }
-        if (is_binary_byte(c)) {
-            fail(Errc::syntax, col_, describe_byte(c) + " (text formats hold no binary bytes)");
-            return err_;
-        }
+        if (is_binary_byte(c)) return binary_byte(c), nullptr;
         if (c == '#' && ws_only_) {
             buf_.push_back('#');
             lb_.verbatim(buf_);
             buf_.clear();
-            in_comment_ = true;
+            start_comment();
             ++col_;
             continue;
         }
         if (!is_ws(c)) ws_only_ = false;
-        if (buf_.size() >= kMaxLineBytes) {
-            fail(Errc::limit, col_, "a line longer than 65536 bytes");
-            return err_;
-        }
+        if (buf_.size() >= kMaxLineBytes) return fail(Errc::limit, col_, "a line longer than 65536 bytes"), nullptr;
         buf_.push_back(static_cast<char>(c));
         ++col_;
     }
-    if (last) {
-        finished_ = true;
-        if (!in_comment_ && !buf_.empty() && !line_done(0)) return err_;
-        in_chain_ = false;
-        emit_last();
-    }
-    return {};
+    return p;
 }
 
 // ---- writer ----------------------------------------------------------------------
@@ -508,7 +387,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
     LayoutCursor lc(b.layout);
     while (!lc.done()) {
         std::uint8_t op = 0;
-        lc.byte(op);
+        lc.u8(op);
         switch (op) {
             case kNop:
                 break;
@@ -537,22 +416,22 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
             }
             case kVerbatim: {
                 std::string_view s;
-                if (!lc.bytes(s)) return corrupt("points", "truncated verbatim bytes");
+                if (!lc.sized(s)) return corrupt("points", "truncated verbatim bytes");
                 out.append(s);
                 break;
             }
             case kStyle:
-                if (!lc.byte(style) || (style & ~(kCrlf | 3u)) != 0) return corrupt("points", "a bad style");
+                if (!lc.u8(style) || (style & ~(kCrlf | 3u)) != 0) return corrupt("points", "a bad style");
                 break;
             case kPoint: {
                 std::uint8_t flags = 0;
-                if (!lc.byte(flags) || (flags & ~0x0Fu) != 0 || cur.done())
+                if (!lc.u8(flags) || (flags & ~0x0Fu) != 0 || cur.done())
                     return corrupt("points", "a bad point line");
                 const int axes = cur.axes();
                 const Point p = *cur.next();
                 std::string_view s;
                 if (flags & kLead) {
-                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    if (!lc.sized(s)) return corrupt("points", "a bad point line");
                     out.append(s);
                 }
                 Spelling sp[kMaxAxes];
@@ -562,7 +441,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
                 for (int a = 0; a < axes; ++a) {
                     if (a) {
                         if (flags & kGaps) {
-                            if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                            if (!lc.sized(s)) return corrupt("points", "a bad point line");
                             out.append(s);
                         } else {
                             out.append(style_sep(style));
@@ -571,7 +450,7 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
                     append_number(out, p[a], sp[a]);
                 }
                 if (flags & kTail) {
-                    if (!lc.bytes(s)) return corrupt("points", "a bad point line");
+                    if (!lc.sized(s)) return corrupt("points", "a bad point line");
                     out.append(s);
                 } else {
                     out.append(style_eol(style));

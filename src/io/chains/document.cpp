@@ -35,7 +35,7 @@ void append_number(std::string& out, std::int64_t v, Spelling sp) {
 }
 
 bool get_spelling(LayoutCursor& c, std::int64_t v, Spelling& sp) {
-    if (!c.byte(sp.sign) || !c.varint(sp.zeros)) return false;
+    if (!c.u8(sp.sign) || !c.varint(sp.zeros)) return false;
     if (sp.sign > 2) return false;
     if (sp.sign == 1 && v < 0) return false;
     if (sp.sign == 2 && v != 0) return false;

@@ -7,7 +7,7 @@
 // the block's chain in a tight loop. Complexity: O(1) per input byte.
 #include <algorithm>
 
-#include "document_internal.hpp"
+#include "line_scanner.hpp"
 
 namespace stepzip::io {
 namespace {
@@ -28,75 +28,45 @@ enum : std::uint8_t {
 // kHead flags: which fields differ from the canonical head "X Y " (in order).
 enum : std::uint8_t { kLead = 1, kX = 2, kWs1 = 4, kY = 8, kWs2 = 16 };
 
-bool is_ws(unsigned char c) { return c == ' ' || c == '\t'; }
-bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
-
-class LayoutBuilder {
+class LayoutBuilder : public LayoutText<LayoutBuilder, kVerbatim> {
 public:
     void run(std::uint8_t op) {
         flush_verbatim();
-        if (run_n_ != 0 && run_op_ != op) flush_run();
+        if (run_n_ != 0 && run_op_ != op) flush_runs();
         run_op_ = op;
         ++run_n_;
     }
-    void verbatim(std::string_view s) {
-        if (s.empty()) return;
-        flush_run();
-        verb_.append(s);
-    }
-    std::string& ops() {
-        flush_run();
-        flush_verbatim();
-        return out_;
-    }
-    std::size_t size() const { return out_.size() + verb_.size(); }
-    std::string take() {
-        ops();
-        std::string s = std::move(out_);
-        out_.clear();
-        return s;
-    }
 
 private:
-    void flush_run() {
+    friend class LayoutText<LayoutBuilder, kVerbatim>;
+    void flush_runs() {
         if (run_n_ == 0) return;
         out_.push_back(static_cast<char>(run_op_));
         put_varint(out_, run_n_);
         run_n_ = 0;
     }
-    void flush_verbatim() {
-        if (verb_.empty()) return;
-        out_.push_back(static_cast<char>(kVerbatim));
-        put_bytes(out_, verb_);
-        verb_.clear();
-    }
-    std::string out_;
-    std::string verb_;
     std::uint8_t run_op_ = 0;
     std::uint64_t run_n_ = 0;
 };
 
-class FreemanParser final : public FormatParser {
+class FreemanParser final : public LineScanner<FreemanParser, LayoutBuilder> {
 public:
     FreemanParser(std::string source, std::size_t block_steps)
-        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {}
-
-    Result<void> feed(std::string_view data, bool last) override;
-    std::uint64_t line() const override { return line_; }
+        : LineScanner(std::move(source), block_steps, 2) {}
 
 private:
-    enum class St : std::uint8_t { lead, x_sign, x_dig, ws1, y_sign, y_dig, ws2, codes, tail, cr, comment };
+    friend class LineScanner<FreemanParser, LayoutBuilder>;
+    enum class St : std::uint8_t { lead, x_sign, x_dig, ws1, y_sign, y_dig, ws2, codes, tail, cr };
+
+    // The grammar, for LineScanner.
+    const unsigned char* scan(const unsigned char* p, const unsigned char* end);
+    bool end_of_input();
+    void before_open_cut() {
+        if (!head_emitted_) emit_head();
+    }
 
     bool byte(unsigned char c);
     const unsigned char* run_codes(const unsigned char* p, const unsigned char* end);
-    const unsigned char* run_comment(const unsigned char* p, const unsigned char* end);
-    bool finish();
-
-    bool fail(Errc code, std::uint64_t column, std::string_view what) {
-        err_ = make_error(code, at(source_, line_, column, what));
-        failed_ = true;
-        return false;
-    }
     bool add_ws(std::string& field, unsigned char c) {
         if (field.size() >= kMaxFieldBytes)
             return fail(Errc::limit, col_, "more than 4096 spaces or tabs in a row in a chain line");
@@ -108,6 +78,26 @@ private:
             return fail(Errc::limit, col_, "a coordinate longer than 4096 digits");
         n.digit(c - '0');
         return true;
+    }
+    // A coordinate starts with c ('+', '-' or a digit) at the current column.
+    void start_number(NumberAccum& n, std::uint64_t& column, unsigned char c, St sign, St digits) {
+        n.reset();
+        column = col_;
+        if (c == '+') n.plus = true;
+        if (c == '-') n.negative = true;
+        if (is_digit(c)) n.digit(c - '0');
+        st_ = is_digit(c) ? digits : sign;
+    }
+    // A CR: the next byte must be LF.
+    void carriage_return(bool in_chain) {
+        cr_col_ = col_;
+        cr_in_chain_ = in_chain;
+        st_ = St::cr;
+    }
+    // LF or CR after a chain line's head or codes.
+    void chain_line_break(unsigned char c) {
+        if (c == '\n') end_chain_line(1);
+        else carriage_return(true);
     }
     bool end_number(const NumberAccum& n, std::uint64_t column) {
         if (n.too_big)
@@ -137,14 +127,7 @@ private:
         st_ = St::lead;
         if (term != 0 && full()) cut(false);
     }
-    bool full() const { return blk_steps_ >= block_steps_ || lb_.size() >= cap_; }
-    void cut(bool open);
 
-    std::string source_;
-    std::size_t block_steps_;
-    std::size_t cap_;
-    std::uint64_t line_ = 1;
-    std::uint64_t col_ = 1;  // column of the byte being read
     St st_ = St::lead;
     bool cr_in_chain_ = false;
     std::uint64_t cr_col_ = 0;
@@ -153,14 +136,6 @@ private:
     std::string lead_, ws1_, ws2_, tail_;
     bool head_emitted_ = false;
     std::uint64_t line_codes_ = 0;
-
-    Block blk_;
-    std::size_t blk_steps_ = 0;
-    LayoutBuilder lb_;
-    bool emitted_ = false;
-    bool failed_ = false;
-    bool finished_ = false;
-    Error err_;
 };
 
 void FreemanParser::emit_head() {
@@ -174,11 +149,11 @@ void FreemanParser::emit_head() {
     if (line_codes_ != 0 && ws2_ != " ") flags |= kWs2;
     o.push_back(static_cast<char>(kHead));
     o.push_back(static_cast<char>(flags));
-    if (flags & kLead) put_bytes(o, lead_);
+    if (flags & kLead) wire::put_sized(o, lead_);
     if (flags & kX) put_spelling(o, xs);
-    if (flags & kWs1) put_bytes(o, ws1_);
+    if (flags & kWs1) wire::put_sized(o, ws1_);
     if (flags & kY) put_spelling(o, ys);
-    if (flags & kWs2) put_bytes(o, ws2_);
+    if (flags & kWs2) wire::put_sized(o, ws2_);
     head_emitted_ = true;
 }
 
@@ -197,29 +172,6 @@ void FreemanParser::end_chain_line(int term) {
     }
     head_emitted_ = false;
     end_line_checks(term);
-}
-
-void FreemanParser::cut(bool open) {
-    if (open && !head_emitted_) emit_head();
-    Block b = std::move(blk_);
-    b.axes = 2;
-    b.open = open;
-    b.layout = lb_.take();
-    if (b.layout.empty()) b.layout.push_back(static_cast<char>(kNop));
-    Point end{};
-    if (open) end = b.chains.back().end();
-    ready.push_back(std::move(b));
-    emitted_ = true;
-    blk_ = Block{};
-    blk_.axes = 2;
-    blk_steps_ = 0;
-    if (open) {
-        blk_.continues = true;
-        Chain c;
-        c.axes = 2;
-        c.start = end;
-        blk_.chains.push_back(std::move(c));
-    }
 }
 
 const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsigned char* end) {
@@ -245,31 +197,6 @@ const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsi
     return p;
 }
 
-const unsigned char* FreemanParser::run_comment(const unsigned char* p, const unsigned char* end) {
-    while (p < end) {
-        if (lb_.size() >= cap_) cut(false);
-        const std::size_t room = cap_ - lb_.size();
-        const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
-        const unsigned char* q = p;
-        while (q < lim && *q != '\n' && !is_binary_byte(*q)) ++q;
-        lb_.verbatim(std::string_view(reinterpret_cast<const char*>(p), static_cast<std::size_t>(q - p)));
-        col_ += static_cast<std::uint64_t>(q - p);
-        p = q;
-        if (q == lim) continue;
-        if (*q == '\n') {
-            lb_.verbatim("\n");
-            ++line_;
-            col_ = 1;
-            st_ = St::lead;
-            if (full()) cut(false);
-            return p + 1;
-        }
-        fail(Errc::syntax, col_, describe_byte(*q) + " in a comment (text formats hold no binary bytes)");
-        return nullptr;
-    }
-    return p;
-}
-
 bool FreemanParser::byte(unsigned char c) {
     switch (st_) {
         case St::lead:
@@ -278,22 +205,15 @@ bool FreemanParser::byte(unsigned char c) {
                 lb_.verbatim(lead_);
                 lb_.verbatim("#");
                 lead_.clear();
-                st_ = St::comment;
+                start_comment();
                 return true;
             }
             if (c == '+' || c == '-' || is_digit(c)) {
-                x_.reset();
-                x_col_ = col_;
-                if (c == '+') x_.plus = true;
-                if (c == '-') x_.negative = true;
-                if (is_digit(c)) x_.digit(c - '0');
-                st_ = is_digit(c) ? St::x_dig : St::x_sign;
+                start_number(x_, x_col_, c, St::x_sign, St::x_dig);
                 return true;
             }
             if (c == '\r') {
-                cr_col_ = col_;
-                cr_in_chain_ = false;
-                st_ = St::cr;
+                carriage_return(false);
                 return true;
             }
             if (c == '\n') {
@@ -328,12 +248,7 @@ bool FreemanParser::byte(unsigned char c) {
         case St::ws1:
             if (is_ws(c)) return add_ws(ws1_, c);
             if (c == '+' || c == '-' || is_digit(c)) {
-                y_.reset();
-                y_col_ = col_;
-                if (c == '+') y_.plus = true;
-                if (c == '-') y_.negative = true;
-                if (is_digit(c)) y_.digit(c - '0');
-                st_ = is_digit(c) ? St::y_dig : St::y_sign;
+                start_number(y_, y_col_, c, St::y_sign, St::y_dig);
                 return true;
             }
             if (c == '\n' || c == '\r')
@@ -349,13 +264,7 @@ bool FreemanParser::byte(unsigned char c) {
             }
             if (c == '\r' || c == '\n') {
                 start_chain();
-                if (c == '\n') {
-                    end_chain_line(1);
-                } else {
-                    cr_col_ = col_;
-                    cr_in_chain_ = true;
-                    st_ = St::cr;
-                }
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_,
@@ -368,13 +277,7 @@ bool FreemanParser::byte(unsigned char c) {
                 start_chain();
                 tail_ = std::move(ws2_);
                 ws2_.clear();
-                if (c == '\n') {
-                    end_chain_line(1);
-                } else {
-                    cr_col_ = col_;
-                    cr_in_chain_ = true;
-                    st_ = St::cr;
-                }
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_, "expected Freeman codes 0-7, found " + describe_byte(c));
@@ -389,14 +292,8 @@ bool FreemanParser::byte(unsigned char c) {
             [[fallthrough]];
         case St::tail:
             if (is_ws(c)) return add_ws(tail_, c);
-            if (c == '\n') {
-                end_chain_line(1);
-                return true;
-            }
-            if (c == '\r') {
-                cr_col_ = col_;
-                cr_in_chain_ = true;
-                st_ = St::cr;
+            if (c == '\n' || c == '\r') {
+                chain_line_break(c);
                 return true;
             }
             return fail(Errc::syntax, col_,
@@ -414,13 +311,11 @@ bool FreemanParser::byte(unsigned char c) {
                 end_line_checks(2);
             }
             return true;
-        case St::comment:
-            break;
     }
     return true;
 }
 
-bool FreemanParser::finish() {
+bool FreemanParser::end_of_input() {
     switch (st_) {
         case St::lead:
             lb_.verbatim(lead_);
@@ -448,57 +343,27 @@ bool FreemanParser::finish() {
             break;
         case St::cr:
             return fail(Errc::syntax, cr_col_, "a carriage return not followed by a line feed");
-        case St::comment:
-            break;
-    }
-    if (!blk_.chains.empty() || lb_.size() != 0 || !emitted_) {
-        Block b = std::move(blk_);
-        b.axes = 2;
-        b.open = false;
-        b.layout = lb_.take();
-        if (b.layout.empty() && !b.chains.empty()) b.layout.push_back(static_cast<char>(kNop));
-        ready.push_back(std::move(b));
-        emitted_ = true;
-        blk_ = Block{};
     }
     return true;
 }
 
-Result<void> FreemanParser::feed(std::string_view data, bool last) {
-    if (failed_) return err_;
-    if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
-    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
-    const auto* end = p + data.size();
-    while (p < end) {
+const unsigned char* FreemanParser::scan(const unsigned char* p, const unsigned char* end) {
+    while (p < end && !in_comment()) {
         if (st_ == St::codes) {
             p = run_codes(p, end);
             if (p == end) break;
-        } else if (st_ == St::comment) {
-            p = run_comment(p, end);
-            if (p == nullptr) return err_;
-            continue;
         } else if (st_ == St::ws2 && static_cast<unsigned>(*p - '0') <= 7u) {
             start_chain();
             st_ = St::codes;
             continue;
         }
         const unsigned char c = *p++;
-        if (is_binary_byte(c))
-            return fail(Errc::syntax, col_, describe_byte(c) + " (text formats hold no binary bytes)"),
-                   err_;
-        if (!byte(c)) return err_;
-        if (c == '\n') {
-            ++line_;
-            col_ = 1;
-        } else {
-            ++col_;
-        }
+        if (is_binary_byte(c)) return binary_byte(c), nullptr;
+        if (!byte(c)) return nullptr;
+        if (c == '\n') next_line();
+        else ++col_;
     }
-    if (last) {
-        finished_ = true;
-        if (!finish()) return err_;
-    }
-    return {};
+    return p;
 }
 
 // ---- writer ----------------------------------------------------------------------
@@ -550,7 +415,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
     LayoutCursor cur(b.layout);
     while (!cur.done()) {
         std::uint8_t op = 0;
-        cur.byte(op);
+        cur.u8(op);
         switch (op) {
             case kNop:
                 break;
@@ -569,19 +434,19 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
             }
             case kVerbatim: {
                 std::string_view s;
-                if (!cur.bytes(s)) return corrupt("freeman", "truncated verbatim bytes");
+                if (!cur.sized(s)) return corrupt("freeman", "truncated verbatim bytes");
                 out.append(s);
                 break;
             }
             case kHead: {
                 std::uint8_t flags = 0;
-                if (!cur.byte(flags) || (flags & ~0x1Fu) != 0 || i >= n)
+                if (!cur.u8(flags) || (flags & ~0x1Fu) != 0 || i >= n)
                     return corrupt("freeman", "a bad line head");
                 const Chain& c = ch[i++];
                 std::string_view ws;
                 Spelling sp;
                 if (flags & kLead) {
-                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (!cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 }
                 if (flags & kX) {
@@ -591,7 +456,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
                     append_int(out, c.start[0]);
                 }
                 if (flags & kWs1) {
-                    if (!cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (!cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 } else {
                     out.push_back(' ');
@@ -603,7 +468,7 @@ Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
                     append_int(out, c.start[1]);
                 }
                 if (flags & kWs2) {
-                    if (c.steps.empty() || !cur.bytes(ws)) return corrupt("freeman", "a bad line head");
+                    if (c.steps.empty() || !cur.sized(ws)) return corrupt("freeman", "a bad line head");
                     out.append(ws);
                 } else if (!c.steps.empty()) {
                     out.push_back(' ');
