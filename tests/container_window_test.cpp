@@ -10,7 +10,7 @@
 #include <random>
 
 #include "../src/container/block_codec.hpp"
-#include "../src/container/bytes.hpp"
+#include "../src/common/bytes.hpp"
 #include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
