@@ -1,5 +1,6 @@
 // Greedy segmenter: the longest exact segment at each point. See segmenters.hpp.
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 
 #include "stepzip/segment/recognizer.hpp"
@@ -49,6 +50,13 @@ bool patent_prefix_exact(std::span<const Step> steps, std::int64_t m, std::int64
 }
 
 namespace {
+std::atomic<std::uint64_t> g_fallbacks{0};
+}  // namespace
+
+void count_segmenter_fallback() noexcept { g_fallbacks.fetch_add(1, std::memory_order_relaxed); }
+std::uint64_t segmenter_fallbacks() noexcept { return g_fallbacks.load(std::memory_order_relaxed); }
+
+namespace {
 
 std::int64_t longest_patent(std::span<const Step> steps) {
     const std::int64_t reach = patent_reach(steps, kPatentMaxSegment);
@@ -80,6 +88,7 @@ void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out
             auto seg = rec.fit(static_cast<std::int64_t>(m));
             assert(seg.has_value());
             // As below: never reached when the recognizer is right.
+            if (!seg) count_segmenter_fallback();
             while (!seg && m > 1) seg = fit_segment(profile_, rest.first(--m), axes_);
             out.push_back(*seg);
             pos += m;
@@ -95,6 +104,7 @@ void GreedySegmenter::run(std::span<const Step> steps, std::vector<Segment>& out
         assert(seg.has_value());
         // Never reached when the recognizer is right (the tests check it):
         // a shorter cut keeps the output exact; one step always fits.
+        if (!seg) count_segmenter_fallback();
         while (!seg && m > 1) seg = fit_segment(profile_, rest.first(--m), axes_);
         out.push_back(*seg);
         pos += m;

@@ -19,4 +19,10 @@ std::int64_t patent_reach(std::span<const Step> steps, std::int64_t cap);
 bool patent_prefix_exact(std::span<const Step> steps, std::int64_t m, std::int64_t a,
                          std::int64_t b);
 
+/// Times a segmenter fell back to a shorter cut because a recognizer claimed
+/// a prefix that no segment fits. The output stays exact, so only this count
+/// shows such a recognizer bug in a release build; the tests require zero.
+void count_segmenter_fallback() noexcept;
+std::uint64_t segmenter_fallbacks() noexcept;
+
 }  // namespace stepzip
