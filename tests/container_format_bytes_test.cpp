@@ -9,6 +9,9 @@
 // container_range_coder_test.cpp (they follow from section 1.4 alone).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,6 +109,45 @@ TEST(FormatBytes, PinnedPayloadsDecodeToTheirChains) {
     ASSERT_TRUE(read_step_model(unhex("02 21 03 00 00 00 36 6e 36 6a e5 a6 5f d2 95 8a 4a f9 80"), 2, true, out,
                                 counts, "pinned").ok());
     EXPECT_EQ(out.chains, b.chains);
+}
+
+// Larger blocks reach the contexts and lists a small input never fills (the
+// successor and recent-shape lists, match lengths, every turn context): the
+// payloads of the first 20000 steps of two corpus files are pinned by size
+// and XXH64. (They change if those corpus files are regenerated.)
+Block corpus_block(const char* rel, std::size_t max_steps) {
+    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
+    std::ostringstream text;
+    text << f.rdbuf();
+    auto chains = read_chains(InputFormat::freeman, text.str(), rel);
+    EXPECT_TRUE(chains.ok()) << rel;
+    Block b;
+    b.axes = 2;
+    std::size_t total = 0;
+    if (chains.ok())
+        for (Chain& c : *chains) {
+            if (total + c.steps.size() > max_steps) break;
+            total += c.steps.size();
+            b.chains.push_back(std::move(c));
+        }
+    EXPECT_GT(total, max_steps / 2) << rel;
+    return b;
+}
+
+TEST(FormatBytes, SegmentModelPayloadOfACorpusBlock) {
+    const Block b = corpus_block("plotter/hershey-grbl.fc", 20000);
+    const std::string payload = write_segment_model(b, Profile::grbl, greedy_cut(b, Profile::grbl));
+    EXPECT_EQ(payload.size(), 1323u);
+    EXPECT_EQ(hash64(payload), 12282891294102104036u);
+}
+
+TEST(FormatBytes, StepModelPayloadOfACorpusBlock) {
+    const Block b = corpus_block("glyphs/dejavu-8.fc", 20000);
+    for (int order : {1, 4}) {
+        const std::string payload = write_step_model(b, order);
+        EXPECT_EQ(payload.size(), order == 1 ? 3498u : 3447u) << order;
+        EXPECT_EQ(hash64(payload), order == 1 ? 11586043019230570721u : 4356108470440770681u) << order;
+    }
 }
 
 }  // namespace
