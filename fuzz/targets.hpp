@@ -107,11 +107,17 @@ inline Result<std::vector<Block>> read_blocks(InputFormat format, std::string_vi
     return blocks;
 }
 
+/// Compression levels the fuzz targets pick from: 1, the default 3, 9 (the
+/// last of the cheap tier), 10 (the first level that encodes every block
+/// every way) up to 19, so both tiers of the encoder and both segmenters
+/// that levels imply are fuzzed.
+inline constexpr int kFuzzLevels[] = {1, 2, 3, 6, 9, 10, 14, 19};
+
 /// A text parser target: the first byte picks the block size (bits 0-2) and
-/// whether to compress (bits 3-5 zero), the second the number of feed()
-/// chunk sizes that follow (0-2); the rest is the file. The reader must accept or
-/// reject it the same way however it is cut; accepted input must render back
-/// to the identical bytes and compress/decompress exactly.
+/// the compression level (bits 3-5, kFuzzLevels), the second the number of
+/// feed() chunk sizes that follow (0-2); the rest is the file. The reader
+/// must accept or reject it the same way however it is cut; accepted input
+/// must render back to the identical bytes and compress/decompress exactly.
 inline std::string chain_file_target(InputFormat format, const std::uint8_t* data,
                                      std::size_t size) {
     if (size < 4) return {};
@@ -149,12 +155,10 @@ inline std::string chain_file_target(InputFormat format, const std::uint8_t* dat
     if (rendered != text) return "writer does not reproduce the input bytes";
 
     // The whole container round trip on the same input, every block's proof
-    // included; for one input in eight only, as compression costs far more
-    // than parsing (the roundtrip target covers the container in depth).
-    if ((data[0] & 0x38) != 0) return {};
+    // included, at the level bits 3-5 of the first byte pick.
     CompressOptions opt;
     opt.format = format;
-    opt.level = 1;
+    opt.level = kFuzzLevels[(data[0] >> 3) % 8];
     std::size_t total_steps = 0;
     for (const Block& b : *whole)
         for (const Chain& c : b.chains) total_steps += c.steps.size();
@@ -283,8 +287,9 @@ inline FuzzChains make_chains(const std::uint8_t* data, std::size_t size) {
 }
 
 /// Round trip: arbitrary bytes -> chains (make_chains on the bytes after
-/// the first three) -> text -> compress under the profile / segmenter /
-/// block size chosen by the first three bytes -> decompress must equal the
+/// the first three) -> text -> compress under the profile / segmenter and
+/// level (kFuzzLevels) / block size chosen by the first three bytes ->
+/// decompress must equal the
 /// text; and every segmenter under every profile that accepts a chain cuts
 /// it into checked segments that expand back to exactly its steps.
 inline std::string roundtrip_target(const std::uint8_t* data, std::size_t size) {
@@ -323,7 +328,7 @@ inline std::string roundtrip_target(const std::uint8_t* data, std::size_t size) 
     // The container.
     CompressOptions opt;
     opt.format = fc.format;
-    opt.level = 1;
+    opt.level = kFuzzLevels[(data[1] / 3) % 8];
     opt.source = "fuzz";
     const unsigned pick = data[0] % 6;
     if (pick < 5) opt.profile = kAllProfiles[pick];

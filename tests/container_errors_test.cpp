@@ -204,7 +204,11 @@ std::string slurp(const std::filesystem::path& p) {
     return s.str();
 }
 
-TEST(ContainerErrors, GoldenErrorFilesFailWithTheirExpectedCode) {
+// Each NAME.expect holds the error code's name on its first line and, on the
+// second, where the decoder must report it ("byte N", the frame offset, and
+// for an error inside a modeled payload the payload offset after it): the
+// message must be "<source>: <where>: ...".
+TEST(ContainerErrors, GoldenErrorFilesFailWithTheirExpectedCodeAndOffset) {
     const std::filesystem::path dir =
         std::filesystem::path(STEPZIP_SOURCE_DIR) / "tests" / "golden-errors";
     int seen = 0;
@@ -212,14 +216,41 @@ TEST(ContainerErrors, GoldenErrorFilesFailWithTheirExpectedCode) {
         if (e.path().extension() != ".stz") continue;
         std::filesystem::path expect = e.path();
         expect.replace_extension(".expect");
-        std::string want = slurp(expect);
-        while (!want.empty() && (want.back() == '\n' || want.back() == ' ')) want.pop_back();
-        auto r = decompress(slurp(e.path()), e.path().filename().string());
+        std::istringstream lines(slurp(expect));
+        std::string want_code, want_where;
+        std::getline(lines, want_code);
+        std::getline(lines, want_where);
+        ASSERT_FALSE(want_code.empty()) << expect;
+        ASSERT_EQ(want_where.rfind("byte ", 0), 0u) << expect << ": second line must say where";
+        const std::string source = e.path().filename().string();
+        auto r = decompress(slurp(e.path()), source);
         ASSERT_FALSE(r.ok()) << e.path();
-        EXPECT_EQ(std::string(errc_name(r.error().code)), want) << e.path() << ": " << r.error().message;
+        EXPECT_EQ(std::string(errc_name(r.error().code)), want_code) << e.path() << ": " << r.error().message;
+        EXPECT_EQ(r.error().message.rfind(source + ": " + want_where + ": ", 0), 0u)
+            << e.path() << ": expected the error at " << want_where << ", got: " << r.error().message;
         ++seen;
     }
-    EXPECT_GE(seen, 8);
+    EXPECT_GE(seen, 17);
+}
+
+// The block checksum alone: a frame whose stored block checksum is wrong
+// but whose blocks decode to the original (so the content checksum holds)
+// is rejected, at the checksum's offset; fixing the checksum field back
+// makes it decode. Nothing else in the frame can catch this damage.
+TEST(ContainerErrors, BlockChecksumIsCheckedOnItsOwn) {
+    const std::string frame = small_frame();
+    const std::uint64_t csize = stz::get_le(frame.data() + stz::kFrameHeaderSize + 2, 4);
+    const std::size_t at = stz::kFrameHeaderSize + 10 + csize;  // first block's checksum
+    ASSERT_LT(at + 4, frame.size());
+    for (int bit = 0; bit < 32; ++bit) {
+        std::string bad = frame;
+        bad[at + static_cast<std::size_t>(bit / 8)] ^= static_cast<char>(1 << (bit % 8));
+        auto r = decompress(bad, "f");
+        ASSERT_FALSE(r.ok()) << "bit " << bit;
+        EXPECT_EQ(r.error().code, Errc::checksum) << r.error().message;
+        EXPECT_EQ(r.error().message.rfind("f: byte " + std::to_string(at) + ": ", 0), 0u) << r.error().message;
+    }
+    EXPECT_TRUE(decompress(frame).ok());
 }
 
 }  // namespace

@@ -123,15 +123,53 @@ TEST(ContainerRoundTrip, EmptyInputAndEmptyChains) {
 
 TEST(ContainerRoundTrip, PointsAndStepsFormatsOnSeveralAxes) {
     for (int axes : {2, 3, 4}) {
-        const auto chains = random_chains(10 + axes, 12, false, axes);
+        // Points: dozens of chains, thousands of steps, over several blocks.
+        const auto chains = random_chains(10 + axes, 60, false, axes);
+        std::size_t total = 0;
+        for (const Chain& c : chains) total += c.steps.size();
+        ASSERT_GT(total, 2000u);
         CompressOptions opt;
         opt.format = InputFormat::points;
-        opt.block_steps = 50;
+        opt.block_steps = 500;
         expect_round_trip(must_text(InputFormat::points, chains), opt, "points");
-        std::vector<Chain> at_origin = chains;
-        for (Chain& c : at_origin) c.start = Point{};
+        // Steps: the file is one chain from the origin; these chains joined
+        // end to end make a log of thousands of ticks that continues across
+        // blocks, coded as chain blocks and with raw blocks allowed.
+        Chain joined;
+        joined.axes = axes;
+        for (const Chain& c : chains) joined.steps.insert(joined.steps.end(), c.steps.begin(), c.steps.end());
         opt.format = InputFormat::steps;
-        expect_round_trip(must_text(InputFormat::steps, {at_origin.front()}), opt, "steps");
+        for (bool raw : {false, true})
+            for (std::size_t block : {std::size_t{333}, kDefaultBlockSteps}) {
+                opt.allow_raw = raw;
+                opt.block_steps = block;
+                expect_round_trip(must_text(InputFormat::steps, {joined}), opt, "steps");
+            }
+    }
+}
+
+TEST(ContainerRoundTrip, StepsFormatLogsWithIdleTicksAndDirNoise) {
+    // Every byte is a valid tick (docs/formats.md, steps): random logs with
+    // runs, idle ticks and DIR changes on resting axes, on 1..4 axes, carry
+    // much of themselves in the layout; they must round-trip as they are.
+    std::mt19937_64 rng(23);
+    for (int axes : {1, 2, 3, 4}) {
+        std::string log;
+        while (log.size() < 6000) {
+            unsigned char tick = 0;
+            for (int a = 0; a < axes; ++a) {
+                if (rng() % 3 != 0) tick |= static_cast<unsigned char>(1u << (2 * a));
+                if (rng() % 2) tick |= static_cast<unsigned char>(2u << (2 * a));
+            }
+            if (rng() % 11 == 0) tick &= 0xAA;  // an idle tick, DIR levels only
+            log.append(1 + rng() % 20, static_cast<char>(tick));
+        }
+        CompressOptions opt;
+        opt.format = InputFormat::steps;
+        for (std::size_t block : {std::size_t{400}, kDefaultBlockSteps}) {
+            opt.block_steps = block;
+            expect_round_trip(log, opt, "steps log");
+        }
     }
 }
 

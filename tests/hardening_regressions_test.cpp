@@ -41,7 +41,11 @@ int replay(const fs::path& root) {
 }
 
 TEST(HardeningRegressions, EveryRecordedFailingInputNowPasses) {
-    replay(fs::path(STEPZIP_SOURCE_DIR) / "tests" / "regressions");
+    // The directory holds three recorded inputs (see its README.md); a
+    // missing or emptied directory must fail here, not pass with nothing run.
+    const fs::path root = fs::path(STEPZIP_SOURCE_DIR) / "tests" / "regressions";
+    ASSERT_TRUE(fs::is_directory(root)) << root;
+    EXPECT_GE(replay(root), 3) << "recorded regression inputs went missing from " << root;
 }
 
 TEST(HardeningRegressions, EveryFuzzSeedPasses) {

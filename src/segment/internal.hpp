@@ -96,3 +96,13 @@ void ProfileCut::ends(std::size_t s, std::size_t lim, F&& f) {
 }
 
 }  // namespace stepzip::detail
+
+namespace stepzip {
+
+/// Times a segmenter fell back to a shorter cut because a recognizer claimed
+/// a prefix that no segment fits. The output stays exact, so only this count
+/// shows such a recognizer bug in a release build; the tests require zero.
+void count_segmenter_fallback() noexcept;
+std::uint64_t segmenter_fallbacks() noexcept;
+
+}  // namespace stepzip

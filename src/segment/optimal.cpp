@@ -50,8 +50,12 @@ void OptimalSegmenter::run(std::span<const Step> steps, std::vector<Segment>& ou
         const auto run = steps.subspan(pos, *it - pos);
         auto seg = fit_segment(profile_, run, axes_);
         assert(seg.has_value());
-        if (seg) out.push_back(*seg);
-        else GreedySegmenter(profile_, axes_).run(run, out);  // never reached when the recognizer is right
+        if (seg) {
+            out.push_back(*seg);
+        } else {  // never reached when the recognizer is right
+            count_segmenter_fallback();
+            GreedySegmenter(profile_, axes_).run(run, out);
+        }
         pos = *it;
     }
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <variant>
 
+#include "internal.hpp"
 #include "stepzip/segment/recognizer.hpp"
 
 namespace stepzip {
@@ -92,6 +93,7 @@ void StreamingSegmenter::cut(std::vector<Segment>& out) {
     auto seg = fit_segment(profile_, held.first(m), axes_);
     // As in the batch greedy: never reached when the recognizer is right; a
     // shorter cut keeps the output exact, and one step always fits.
+    if (!seg) count_segmenter_fallback();
     while (!seg && m > 1) seg = fit_segment(profile_, held.first(--m), axes_);
     out.push_back(*seg);
     held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(m));

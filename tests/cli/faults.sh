@@ -2,9 +2,11 @@
 # Faults: a full disk, unreadable inputs, an existing output, a signal in the
 # middle of the work. For compress, decompress, interpolate and segment each
 # failure must leave no output file (and no temporary file), the input
-# untouched, exactly one line on stderr, and a non-zero exit code.
+# untouched, exactly one line on stderr, and a non-zero exit code. A check
+# that cannot run here says "skip:" and why; a command that finishes before
+# its signal arrives is a failure (the signal check did not happen).
 # Usage: bash faults.sh <stepzip-binary> <source-dir>
-set -u
+set -euo pipefail
 Z=$(realpath "$1")
 SRC=$(realpath "$2")
 W=$(mktemp -d)
@@ -18,14 +20,13 @@ no_leftovers() {
     local left
     left=$(find . -maxdepth 2 \( -name '.*.stepzip-*' -o -name 'out.*' \) -print)
     [ -z "$left" ] || fail "$1: left behind: $left"
-    rm -f ./.*.stepzip-* out.* 2>/dev/null
+    rm -f ./.*.stepzip-* out.*
 }
 # refuse "what" pattern command... : exit status non-zero (1 unless a signal),
 # exactly one stderr line matching pattern, inputs unchanged, nothing left.
 refuse() {
-    local what=$1 pattern=$2; shift 2
-    "$@" >stdout.log 2>err.log
-    local rc=$?
+    local what=$1 pattern=$2 rc=0; shift 2
+    "$@" >stdout.log 2>err.log || rc=$?
     [ $rc -ne 0 ] || fail "$what: exit 0"
     [ $rc -eq 1 ] || fail "$what: exit $rc, expected 1"
     [ "$(wc -l <err.log)" -eq 1 ] || { fail "$what: stderr is not one line"; cat err.log; }
@@ -58,7 +59,7 @@ for i in "${!cmds[@]}"; do
     # An existing output without -f is refused and left as it was.
     echo keep >keep.existing
     refuse "$name existing output" "already exists" "$Z" "${c[@]}" "$in" -o keep.existing
-    echo keep | cmp -s - keep.existing 2>/dev/null || fail "$name: existing output was touched"
+    echo keep | cmp -s - keep.existing || fail "$name: existing output was touched"
     rm -f keep.existing
     # An output directory that does not exist.
     refuse "$name output in a missing directory" "nodir" "$Z" "${c[@]}" "$in" -o nodir/out.x
@@ -83,7 +84,7 @@ if [ "$(id -u)" -ne 0 ] || [ ${#as_user[@]} -gt 0 ]; then
         refuse "${cc[0]} unreadable input" "Permission denied" "${as_user[@]}" "$Z" "${cc[@]}" locked.fc -c
     done
 else
-    echo "SKIP: unreadable input (running as root without setpriv or user 'nobody')"
+    echo "skip: unreadable input (running as root without setpriv or user 'nobody')"
 fi
 chmod 600 locked.fc
 rm -f locked.fc
@@ -93,6 +94,7 @@ chmod 700 "$W"
 # walk of a few million steps keeps each command busy for a while.
 table=$(printf '01234567%.0s' {1..32})
 { printf '0 0 '; head -c 1000000 /dev/urandom | tr '\000-\377' "$table"; echo; } >big.fc
+[ "$(wc -c <big.fc)" -eq 1000005 ] || fail "setup: big.fc has the wrong size"
 "$Z" compress -q big.fc -o big.stz -L 1 || fail "setup: compress big.fc"
 {
     echo "G0 X0 Y0"
@@ -108,19 +110,23 @@ for c in "${sig_cmds[@]}"; do
         what="${cc[0]} SIG$sig"
         "$Z" "${cc[@]}" -o out.x 2>err.log &
         pid=$!
-        # Wait until the work is under way (a temporary file exists, or
-        # half a second passed), then interrupt it.
+        # Wait until the work is under way, then interrupt it: compress and
+        # decompress open their temporary output first (wait for it, at most
+        # half a second); interpolate and segment write theirs at the end.
         had_temp=no
-        for _ in $(seq 1 50); do
-            [ -n "$(find . -maxdepth 1 -name '.out.x.stepzip-*' -print -quit)" ] && { had_temp=yes; break; }
-            sleep 0.01
-        done
+        case ${cc[0]} in
+            compress | decompress)
+                for _ in $(seq 1 50); do
+                    [ -n "$(find . -maxdepth 1 -name '.out.x.stepzip-*' -print -quit)" ] && { had_temp=yes; break; }
+                    sleep 0.01
+                done ;;
+        esac
         sleep 0.1
-        kill -s "$sig" "$pid" 2>/dev/null
-        wait "$pid"
-        rc=$?
+        kill -s "$sig" "$pid" 2>/dev/null || true
+        rc=0
+        wait "$pid" || rc=$?
         if [ $rc -eq 0 ]; then
-            echo "NOTE: $what: finished before the signal arrived"
+            fail "$what: finished before the signal arrived (the check did not run; make the input larger)"
             rm -f out.x
             continue
         fi

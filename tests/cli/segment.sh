@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # stepzip segment: SPEC examples, every output format, stdin/stdout, -o,
-# errors, exit codes and no partial output.
+# errors, exit codes and no partial output. Every command's exit status is
+# checked (a failed command is reported, never skipped over).
 # Usage: bash segment.sh <stepzip-binary> <source-dir>
-set -u
+set -euo pipefail
 BIN=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 SRC=$(cd "$2" && pwd)
 WORK=$(mktemp -d)
@@ -15,8 +16,8 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 expect_err() {
     local name=$1 code=$2 pattern=$3
     shift 3
-    "$@" >out.txt 2>err.txt
-    local rc=$?
+    local rc=0
+    "$@" >out.txt 2>err.txt || rc=$?
     [ "$rc" -eq "$code" ] || fail "$name: exit $rc, expected $code ($(cat err.txt))"
     grep -q -- "$pattern" err.txt || fail "$name: stderr '$(cat err.txt)' lacks '$pattern'"
     [ "$(wc -l <err.txt)" -eq 1 ] || fail "$name: expected one stderr line, got: $(cat err.txt)"
@@ -25,27 +26,29 @@ expect_err() {
 # SPEC §6: the Fig. 5 chain under the patent segmenter: the first move ends at X8 Y3
 echo '0 0 02002002000' >fig5.fc
 "$BIN" segment fig5.fc --segmenter patent --to gcode >fig5.gcode 2>note.txt || fail "fig5: exit $?"
-first=$(grep -m1 '^G1' fig5.gcode)
+first=$(grep -m1 '^G1' fig5.gcode || true)
 [ "$first" = "G1 X8 Y3" ] || fail "fig5: first move '$first', expected 'G1 X8 Y3'"
 grep -q '^G0 X0 Y0$' fig5.gcode || fail "fig5: no G0 to the chain start"
 grep -q 'patent approximation mode: 1 segment(s) read out, 0 reproduce' note.txt \
     || fail "fig5: deviation not reported: $(cat note.txt)"
-"$BIN" segment fig5.fc --segmenter patent --to gcode -q 2>note.txt >/dev/null
+"$BIN" segment fig5.fc --segmenter patent --to gcode -q 2>note.txt >/dev/null || fail "fig5 -q: exit $?"
 [ ! -s note.txt ] || fail "-q still printed: $(cat note.txt)"
 # ... the same from stdin, and as JSON with the deviation statistics
-got=$(echo '0 0 02002002000' | "$BIN" segment --segmenter patent --to json -q)
+got=$(echo '0 0 02002002000' | "$BIN" segment --segmenter patent --to json -q) || fail "patent json: exit $?"
 echo "$got" | grep -q '"exact":false' || fail "patent json: not marked inexact: $got"
 echo "$got" | grep -q '"delta":\[8,3\]' || fail "patent json: no (8,3) segment: $got"
 echo "$got" | grep -q '"patent_max_deviation":' || fail "patent json: no deviation: $got"
 
 # exact segmenters: the output vectors, interpolated again, give the chain back
 echo '0 0 0020020020' >patent.fc
-got=$("$BIN" segment patent.fc --profile patent --to gcode | "$BIN" interpolate --profile patent)
+got=$("$BIN" segment patent.fc --profile patent --to gcode | "$BIN" interpolate --profile patent) \
+    || fail "patent round trip: exit $?"
 [ "$got" = "0 0 0020020020" ] || fail "patent round trip: '$got'"
-grep -q '"delta":\[7,3\]' <("$BIN" segment patent.fc --profile patent --to json) \
-    || fail "patent profile: (7,3) is not one segment"
+"$BIN" segment patent.fc --profile patent --to json -o patent.json || fail "patent json: exit $?"
+grep -q '"delta":\[7,3\]' patent.json || fail "patent profile: (7,3) is not one segment"
 for p in eval4 patent; do
-    "$BIN" interpolate --profile "$p" "$SRC/corpora/samples/plot.gcode" -o "plot-$p.fc"
+    "$BIN" interpolate --profile "$p" "$SRC/corpora/samples/plot.gcode" -o "plot-$p.fc" \
+        || fail "interpolate plot.gcode under $p: exit $?"
 done
 for seg in greedy optimal; do
     for p in eval4 patent; do
@@ -57,29 +60,33 @@ for seg in greedy optimal; do
 done
 # a line drawn under a profile is one segment under that profile, so the
 # G-code written back interpolates to the same chains
-"$BIN" interpolate --profile eval8 "$SRC/corpora/samples/plot.gcode" -o plot8.fc
-printf 'G0 X0 Y0\nG1 X40 Y17\nG1 X-3 Y5\n' | "$BIN" interpolate --profile eval8 -o lines.fc
+"$BIN" interpolate --profile eval8 "$SRC/corpora/samples/plot.gcode" -o plot8.fc || fail "plot8: exit $?"
+printf 'G0 X0 Y0\nG1 X40 Y17\nG1 X-3 Y5\n' | "$BIN" interpolate --profile eval8 -o lines.fc \
+    || fail "lines.fc: exit $?"
 "$BIN" segment lines.fc --profile eval8 --to gcode -o lines.gcode || fail "lines: exit $?"
 [ "$(grep -c '^G1' lines.gcode)" -eq 2 ] || fail "lines: expected two G1 moves: $(cat lines.gcode)"
-"$BIN" interpolate --profile eval8 lines.gcode -o lines2.fc
+"$BIN" interpolate --profile eval8 lines.gcode -o lines2.fc || fail "lines2: exit $?"
 cmp -s lines.fc lines2.fc || fail "lines: gcode round trip differs"
 # HP-GL and relative G-code round trips
 "$BIN" segment lines.fc --profile eval8 --to hpgl -o lines.plt || fail "hpgl: exit $?"
 grep -q '^PD40,17,' lines.plt || fail "hpgl: content $(cat lines.plt)"
-"$BIN" interpolate --profile eval8 lines.plt -o lines3.fc
+"$BIN" interpolate --profile eval8 lines.plt -o lines3.fc || fail "lines3: exit $?"
 cmp -s lines.fc lines3.fc || fail "lines: hpgl round trip differs"
-"$BIN" segment lines.fc --profile eval8 --to gcode --relative | grep -q '^G91$' || fail "--relative"
-"$BIN" segment lines.fc --profile eval8 --to gcode --step-size 0.025 | grep -q '^G1 X1 Y0.425$' \
-    || fail "--step-size output"
+"$BIN" segment lines.fc --profile eval8 --to gcode --relative >rel.gcode || fail "--relative: exit $?"
+grep -q '^G91$' rel.gcode || fail "--relative"
+"$BIN" segment lines.fc --profile eval8 --to gcode --step-size 0.025 >mm.gcode || fail "--step-size: exit $?"
+grep -q '^G1 X1 Y0.425$' mm.gcode || fail "--step-size output"
 # auto picks a profile; svg output is a picture with the segments
-"$BIN" segment plot8.fc --to json | grep -q '"profile":"eval8"' || fail "auto on eval8 data"
+"$BIN" segment plot8.fc --to json >plot8.json || fail "auto: exit $?"
+grep -q '"profile":"eval8"' plot8.json || fail "auto on eval8 data"
 "$BIN" segment plot8.fc --to svg -o plot.svg || fail "svg: exit $?"
 head -c 200 plot.svg | grep -q '<svg' || fail "svg: not an svg"
 grep -q '<polyline' plot.svg || fail "svg: no chain polyline"
 grep -q '<line ' plot.svg || fail "svg: no segments"
 # points input, format given
-printf '0 0\n1 0\n2 1\n' | "$BIN" segment --format points --profile eval8 --to gcode -c \
-    | grep -q '^G1 X2 Y1$' || fail "points input"
+printf '0 0\n1 0\n2 1\n' | "$BIN" segment --format points --profile eval8 --to gcode -c >points.gcode \
+    || fail "points input: exit $?"
+grep -q '^G1 X2 Y1$' points.gcode || fail "points input"
 
 # errors: one line, exit 1, no output file
 expect_err "no overwrite" 1 "plot.svg: already exists" "$BIN" segment plot8.fc --to svg -o plot.svg
@@ -95,7 +102,8 @@ expect_err "patent on diagonals" 1 "diag.fc: chain 1: " \
 printf 'hello\n' >hello.txt
 expect_err "undetected" 1 "hello.txt: not a chain file" "$BIN" segment hello.txt --to gcode
 expect_err "missing input" 1 "nothere.fc: " "$BIN" segment nothere.fc --to gcode
-ls -A | grep -q '\.stepzip-' && fail "temporary file left behind: $(ls -A)"
+left=$(find . -maxdepth 1 -name '*.stepzip-*' -print)
+[ -z "$left" ] || fail "temporary file left behind: $left"
 # usage errors: exit 2
 expect_err "no --to" 2 "--to is required" "$BIN" segment fig5.fc
 expect_err "bad --to" 2 "unknown output 'png'" "$BIN" segment fig5.fc --to png

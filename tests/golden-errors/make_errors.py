@@ -75,32 +75,39 @@ def edit(frame, pos, value):
 assert check32(good[10:block_end(good) - 4]) == struct.unpack_from('<I', good, block_end(good) - 4)[0]
 assert good[10] == 3, 'plotter.fc.stz should hold a segment-model block'
 end = block_end(good)       # offset of the end mark
+csize = struct.unpack_from('<I', good, 12)[0]
+trailer_check = end + 1 + 8 * 4  # the end mark's type byte and statistics, then check32
+# name: (error code, where the decoder must report it, bytes). The place is
+# worked out from the edit and docs/FORMAT.md, not taken from the decoder.
 files = {
-    'bad_magic': ('bad magic', edit(good, 0, 0x37)),
-    'bad_version': ('bad version', edit(good, 4, 99)),
-    'reserved_header': ('reserved bits', edit(good, 9, 1)),
-    'reserved_segmenter': ('reserved bits', edit(good, 8, good[8] | 0x80)),
-    'reserved_block_flags': ('reserved bits', edit(good, 11, good[11] | 4)),
-    'unknown_block_type': ('corrupt', edit(good, 10, 7)),
-    'block_over_limit': ('limit', good[:12] + struct.pack('<I', 2 << 30) + good[16:]),
-    'block_checksum': ('checksum', edit(good, 30, good[30] ^ 0x10)),
-    'truncated_block': ('truncated', good[:40]),
-    'truncated_trailer': ('truncated', good[:end + 20]),
-    'trailer_checksum': ('checksum', edit(good, end + 9, good[end + 9] ^ 1)),
-    'content_checksum': ('checksum', edit(good, len(good) - 1, good[-1] ^ 1)),
-    'trailing_bytes': ('corrupt', good + b'\0'),
-    'empty_file': ('truncated', b''),
+    'bad_magic': ('bad magic', 'byte 0', edit(good, 0, 0x37)),
+    'bad_version': ('bad version', 'byte 4', edit(good, 4, 99)),
+    'reserved_header': ('reserved bits', 'byte 9', edit(good, 9, 1)),
+    'reserved_segmenter': ('reserved bits', 'byte 8', edit(good, 8, good[8] | 0x80)),
+    'reserved_block_flags': ('reserved bits', 'byte 11', edit(good, 11, good[11] | 4)),
+    'unknown_block_type': ('corrupt', 'byte 10', edit(good, 10, 7)),
+    'block_over_limit': ('limit', 'byte 12', good[:12] + struct.pack('<I', 2 << 30) + good[16:]),
+    # A payload bit flipped: the block checksum (at the block's end) fails.
+    'block_checksum': ('checksum', 'byte %d' % (end - 4), edit(good, 30, good[30] ^ 0x10)),
+    # The stored block checksum itself changed, the block intact: it decodes
+    # to the original and the content checksum holds, so only the block
+    # check can reject this file.
+    'block_checksum_only': ('checksum', 'byte %d' % (end - 4), edit(good, end - 4, good[end - 4] ^ 1)),
+    'truncated_block': ('truncated', 'byte 40', good[:40]),
+    'truncated_trailer': ('truncated', 'byte %d' % (end + 20), good[:end + 20]),
+    'trailer_checksum': ('checksum', 'byte %d' % trailer_check, edit(good, end + 9, good[end + 9] ^ 1)),
+    'content_checksum': ('checksum', 'byte %d' % (trailer_check + 4), edit(good, len(good) - 1, good[-1] ^ 1)),
+    'trailing_bytes': ('corrupt', 'byte %d' % len(good), good + b'\0'),
+    'empty_file': ('truncated', 'byte 0', b''),
     # A modeled block whose decoded size differs from its stored size.
-    'model_sizes_differ': ('corrupt', good[:16] + struct.pack('<I', struct.unpack_from('<I', good, 12)[0] + 1) + good[20:]),
+    'model_sizes_differ': ('corrupt', 'byte 16', good[:16] + struct.pack('<I', csize + 1) + good[20:]),
     # A segment-model block whose range-coded stream lost its last byte
     # (sizes and block checksum made consistent again): the decoder must
-    # notice that the stream does not end where the payload ends.
-    'model_stream_short': ('corrupt', reseal(
-        good[:12] + struct.pack('<II', struct.unpack_from('<I', good, 12)[0] - 1,
-                                struct.unpack_from('<I', good, 16)[0] - 1)
+    # notice, at the payload's end, that the stream does not end there.
+    'model_stream_short': ('corrupt', 'byte 10 (block 0) payload byte %d' % (csize - 1), reseal(
+        good[:12] + struct.pack('<II', csize - 1, struct.unpack_from('<I', good, 16)[0] - 1)
         + good[20:end - 5] + good[end - 4:])),
 }
-
 # Version 2 (docs/FORMAT.md 1.1-1.8), from tests/golden/v2/plotter.fc.stz:
 # one segment-model block, window 2^22 declared.
 good2 = open(os.path.join(here, '..', 'golden', 'v2', 'plotter.fc.stz'), 'rb').read()
@@ -143,16 +150,16 @@ assert good2[4] == 2 and good2[8] & 7 == 3, 'v2/plotter.fc.stz should hold a seg
 assert check32(good2[8:block2(good2)[0]]) == struct.unpack_from('<I', good2, block2(good2)[0])[0]
 end2 = block2(good2)[1]  # offset of the end mark
 files.update({
-    'v2_header_check': ('checksum', edit(good2, 6, good2[6] ^ 0x08)),
-    'v2_reserved_descriptor': ('reserved bits', header2(good2, b5=good2[5] | 0x80)),
-    'v2_window_over_limit': ('limit', header2(good2, b6=(good2[6] & 7) | (24 << 3))),
-    'v2_window_undeclared': ('corrupt', reseal2(edit(header2(good2, b6=good2[6] & 7), 8, good2[8] | 0x20))),
-    'v2_reserved_block_flags': ('reserved bits', edit(good2, 8, good2[8] | 0x40)),
-    'v2_trailer_flags': ('reserved bits', edit(good2, len(good2) - 9, 2)),
-    'v2_content_checksum': ('checksum', edit(good2, len(good2) - 1, good2[-1] ^ 1)),
-    'v2_partial_second_magic': ('corrupt', good2 + good2[:3]),
-    'v2_truncated_second_frame': ('truncated', good2 + good2[:end2]),
+    'v2_header_check': ('checksum', 'byte 7', edit(good2, 6, good2[6] ^ 0x08)),
+    'v2_reserved_descriptor': ('reserved bits', 'byte 5', header2(good2, b5=good2[5] | 0x80)),
+    'v2_window_over_limit': ('limit', 'byte 6', header2(good2, b6=(good2[6] & 7) | (24 << 3))),
+    'v2_window_undeclared': ('corrupt', 'byte 8', reseal2(edit(header2(good2, b6=good2[6] & 7), 8, good2[8] | 0x20))),
+    'v2_reserved_block_flags': ('reserved bits', 'byte 8', edit(good2, 8, good2[8] | 0x40)),
+    'v2_trailer_flags': ('reserved bits', 'byte %d' % (len(good2) - 9), edit(good2, len(good2) - 9, 2)),
+    'v2_content_checksum': ('checksum', 'byte %d' % (len(good2) - 8), edit(good2, len(good2) - 1, good2[-1] ^ 1)),
+    'v2_partial_second_magic': ('corrupt', 'byte %d' % len(good2), good2 + good2[:3]),
+    'v2_truncated_second_frame': ('truncated', 'byte %d' % (len(good2) + end2), good2 + good2[:end2]),
 })
-for name, (code, data) in files.items():
+for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
-    open(os.path.join(here, name + '.expect'), 'w').write(code + '\n')
+    open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')

@@ -3,8 +3,9 @@
 # `stepzip segment --to svg` writes, and the PNG shows the chains where they
 # are (tests/tools/svg_check.py decodes it with the standard library).
 # Usage: bash svg.sh <stepzip-binary> <source-dir> [python3]
-# Exit 77 (skipped) when rsvg-convert is not installed.
-set -u
+# Exit 77 (skipped) when rsvg-convert is not installed. Every command's exit
+# status is checked: a failed command is a failure, never a skipped check.
+set -euo pipefail
 BIN=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 SRC=$(cd "$2" && pwd)
 PY=${3:-python3}
@@ -40,8 +41,11 @@ check three three.fc
 check three-optimal three.fc --segmenter optimal --profile grbl
 printf '0 0 02002002000\n' >fig5.fc
 check fig5-patent fig5.fc --segmenter patent
-"$BIN" interpolate --profile eval8 "$SRC/corpora/samples/plot.gcode" >plot.fc 2>/dev/null \
-    && check plot plot.fc
+if "$BIN" interpolate --profile eval8 "$SRC/corpora/samples/plot.gcode" >plot.fc 2>plot.err; then
+    check plot plot.fc
+else
+    fail "plot: interpolate: $(cat plot.err)"
+fi
 
 if [ "$failures" -ne 0 ]; then
     echo "$failures failure(s)"
