@@ -239,8 +239,22 @@ TEST(ContainerErrors, GoldenErrorFilesFailWithTheirExpectedCodeAndOffset) {
 // makes it decode. Nothing else in the frame can catch this damage.
 TEST(ContainerErrors, BlockChecksumIsCheckedOnItsOwn) {
     const std::string frame = small_frame();
-    const std::uint64_t csize = stz::get_le(frame.data() + stz::kFrameHeaderSize + 2, 4);
-    const std::size_t at = stz::kFrameHeaderSize + 10 + csize;  // first block's checksum
+    // Version 2 (docs/FORMAT.md 1.2): the block byte (type in bits 0-2),
+    // varint compressed size C, a varint decoded size for chain and raw
+    // blocks only, C payload bytes, then the checksum.
+    std::size_t pos = stz::kFrameHeaderSize;
+    const unsigned type = static_cast<unsigned char>(frame.at(pos++)) & 7u;
+    auto varint = [&] {
+        std::uint64_t v = 0;
+        for (int shift = 0;; shift += 7) {
+            const auto b = static_cast<unsigned char>(frame.at(pos++));
+            v |= static_cast<std::uint64_t>(b & 0x7F) << shift;
+            if (b < 0x80) return v;
+        }
+    };
+    const std::uint64_t csize = varint();
+    if (type == stz::kChains || type == stz::kRaw) varint();
+    const std::size_t at = pos + csize;  // first block's checksum
     ASSERT_LT(at + 4, frame.size());
     for (int bit = 0; bit < 32; ++bit) {
         std::string bad = frame;

@@ -202,7 +202,10 @@ private:
         b.header = rec_.size();
         const std::uint64_t dlimit = b.type == kRaw ? kMaxBlockBytes + 20 : kMaxBlockPayload;
         if (b.csize > kMaxBlockPayload || b.dsize > dlimit)
-            return make_error(Errc::limit, at(block_at + 1) + ": block sizes exceed the decoder limits");
+            // The sizes start after the type and flags bytes in version 1, after
+            // the one block byte in version 2.
+            return make_error(Errc::limit, at(block_at + (hdr_.version == 1 ? 2 : 1)) +
+                                               ": block sizes exceed the decoder limits");
         const bool stored = b.type == kSegmentModel || b.type == kStepModel;
         if (stored && b.dsize != b.csize)
             return make_error(Errc::corrupt, at(block_at + 6) +
