@@ -14,33 +14,20 @@ namespace po = boost::program_options;
 
 namespace stepzip::cli {
 
-int cmd_verify(const std::vector<std::string>& args) {
-    std::vector<std::string> files;
-    bool quiet = false;
-    po::options_description desc(
-        "Usage: stepzip verify INPUT.stz [ORIGINAL]\n"
-        "Decodes INPUT.stz and checks every block and the content XXH64; with ORIGINAL,\n"
-        "also compares the decoded bytes with it. Exit 0 only if the round trip is exact.\n"
-        "Options");
-    desc.add_options()("help,h", "show this help")("quiet,q", po::bool_switch(&quiet),
-                                                   "print nothing on success");
-    po::variables_map vm;
-    if (auto exit_code = parse_command("verify", args, desc, "file", po::value(&files), 2, vm))
-        return *exit_code;
-    if (files.empty()) return usage_error("verify: INPUT.stz is required");
+namespace {
+
+// Decodes one frame; with `original` open, compares the decoded bytes with it.
+int verify_one(const std::string& file, InputStream* original, bool quiet) {
     InputStream in;
-    if (auto r = in.open(files[0]); !r) return report(r.error());
-    InputStream orig;
-    const bool compare = files.size() > 1;
-    if (compare)
-        if (auto r = orig.open(files[1]); !r) return report(r.error());
+    if (auto r = in.open(file); !r) return report(r.error());
+    const bool compare = original != nullptr;
     std::uint64_t offset = 0;
     bool differs = false;
     std::string buf;
     WriteFn sink = [&](std::string_view b) -> Result<void> {
         if (!compare || differs) return {};
         buf.resize(b.size());
-        auto n = orig.read(buf.data(), b.size());
+        auto n = original->read(buf.data(), b.size());
         if (!n) return std::move(n).error();
         for (std::size_t i = 0; i < b.size(); ++i)
             if (i >= *n || buf[i] != b[i]) {
@@ -55,19 +42,60 @@ int cmd_verify(const std::vector<std::string>& args) {
     if (!info) return report(info.error());
     if (compare && !differs) {
         char c;
-        auto n = orig.read(&c, 1);
+        auto n = original->read(&c, 1);
         if (!n) return report(n.error());
         differs = *n != 0;
     }
     if (differs)
         return report(make_error(Errc::mismatch, in.name() + ": decoded bytes differ from " +
-                                                     orig.name() + " at byte " +
+                                                     original->name() + " at byte " +
                                                      std::to_string(offset)));
     if (!quiet)
         std::printf("%s: OK (%llu bytes%s)\n", in.name().c_str(),
                     static_cast<unsigned long long>(info->decoded_bytes),
-                    compare ? (", identical to " + orig.name()).c_str() : "");
+                    compare ? (", identical to " + original->name()).c_str() : "");
     return 0;
+}
+
+}  // namespace
+
+int cmd_verify(const std::vector<std::string>& args) {
+    std::vector<std::string> files;
+    std::string original;
+    bool quiet = false, recursive = false;
+    po::options_description desc(
+        "Usage: stepzip verify INPUT.stz... [--original FILE] [-r] [-q]\n"
+        "       stepzip -t INPUT.stz...   (zstd's form)\n"
+        "Decodes every INPUT.stz and checks every block and the content XXH64; with\n"
+        "--original FILE (one input), also compares the decoded bytes with FILE.\n"
+        "Exit 0 only if every round trip is exact.\n"
+        "Options");
+    desc.add_options()
+        ("help,h", "show this help")
+        ("original", po::value(&original), "compare the decoded bytes with FILE (one input only)")
+        ("recursive,r", po::bool_switch(&recursive), "test the *.stz files under directories")
+        ("quiet,q", po::bool_switch(&quiet), "print nothing on success");
+    po::variables_map vm;
+    if (auto exit_code = parse_command("verify", args, desc, "file", po::value(&files), -1, vm))
+        return *exit_code;
+    if (files.empty()) files.push_back("-");
+    if (recursive) {
+        auto expanded = expand_directories(
+            files, [](const std::string& path) { return has_suffix(path, ".stz"); });
+        if (!expanded) return report(expanded.error());
+        files = std::move(*expanded);
+    }
+    if (!original.empty() && files.size() != 1)
+        return usage_error("verify: --original compares one input, " + std::to_string(files.size()) +
+                           " given");
+    if (auto refused = console_stdin_refused(files, false)) return report(*refused);
+    InputStream orig;
+    if (!original.empty())
+        if (auto r = orig.open(original); !r) return report(r.error());
+    int status = 0;
+    for (const std::string& f : files)
+        if (verify_one(f, original.empty() ? nullptr : &orig, quiet) != 0) status = 1;
+    return status;
 }
 
 }  // namespace stepzip::cli
