@@ -122,8 +122,8 @@ std::optional<Error> console_stdin_refused(const std::vector<std::string>& input
     if (force || !is_terminal(stdin)) return std::nullopt;
     if (std::none_of(inputs.begin(), inputs.end(), [](const std::string& p) { return is_dash(p); }))
         return std::nullopt;
-    return make_error(Errc::io, "stdin is a console, aborting (pipe or redirect the input, "
-                                "name a file, or use -f to read the terminal)");
+    return make_error(Errc::io, "stdin is a console, aborting (pipe or name an input, -f reads "
+                                "the terminal; 'stepzip --help' lists the commands)");
 }
 
 bool has_suffix(std::string_view path, std::string_view suffix) noexcept {
@@ -352,8 +352,11 @@ Result<void> OutputFile::commit() {
 
 // ------------------------------------------------------------------ Progress
 
-Progress::Progress(std::string label, std::uint64_t total, bool enabled)
-    : label_(std::move(label)), total_(total), active_(enabled && is_terminal(stderr)) {}
+Progress::Progress(std::string label, std::uint64_t total, bool enabled, bool compressing)
+    : label_(std::move(label)),
+      total_(total),
+      active_(enabled && is_terminal(stderr)),
+      compressing_(compressing) {}
 
 Progress::~Progress() { finish(); }
 
@@ -367,9 +370,12 @@ void Progress::update(std::uint64_t read, std::uint64_t written) {
     if (total_ > 0)
         line += std::to_string(read >= total_ ? 100 : read * 100 / total_) + "% ";
     line += format_size(read) + " => " + format_size(written);
-    if (read > 0) {
+    // The ratio is frame size / original size in both directions.
+    const std::uint64_t frame = compressing_ ? written : read;
+    const std::uint64_t original = compressing_ ? read : written;
+    if (original > 0) {
         char ratio[32];
-        std::snprintf(ratio, sizeof ratio, " (%.2f%%)", 100.0 * static_cast<double>(written) / read);
+        std::snprintf(ratio, sizeof ratio, " (%.2f%%)", 100.0 * static_cast<double>(frame) / original);
         line += ratio;
     }
     line += "\033[K";

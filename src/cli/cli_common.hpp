@@ -120,7 +120,9 @@ private:
 /// second, erased by finish() or the destructor.
 class Progress {
 public:
-    Progress(std::string label, std::uint64_t total, bool enabled = true);
+    /// `compressing`: the output is the frame (else the input is), for the
+    /// ratio frame / original.
+    Progress(std::string label, std::uint64_t total, bool enabled, bool compressing);
     ~Progress();
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
@@ -134,6 +136,7 @@ private:
     std::string label_;
     std::uint64_t total_;
     bool active_;
+    bool compressing_;
     bool shown_ = false;
     std::chrono::steady_clock::time_point last_{};
 };

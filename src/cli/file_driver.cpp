@@ -20,7 +20,7 @@ struct Counts {
 // Runs `transform` on one opened input into `out`; prints the -v summary.
 int run_one(const FileJobOptions& o, InputStream& in, OutputFile& out, const TransformFn& transform) {
     Counts n;
-    Progress progress(o.command + " " + in.name(), in.size(), o.progress && !o.quiet);
+    Progress progress(o.command + " " + in.name(), in.size(), o.progress && !o.quiet, o.binary_output);
     const ReadFn read = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
         auto got = in.read(buf, cap);
         if (got) n.read += *got;
@@ -35,7 +35,10 @@ int run_one(const FileJobOptions& o, InputStream& in, OutputFile& out, const Tra
     progress.finish();
     if (!detail) return report(detail.error());
     if (o.verbose) {
-        const double ratio = n.read ? 100.0 * static_cast<double>(n.written) / n.read : 0.0;
+        // The ratio is always frame size / original size, as zstd's.
+        const std::uint64_t frame = o.binary_output ? n.written : n.read;
+        const std::uint64_t original = o.binary_output ? n.read : n.written;
+        const double ratio = original ? 100.0 * static_cast<double>(frame) / original : 0.0;
         std::fprintf(stderr, "%s : %.2f%% (%s => %s, %s)%s%s\n", in.name().c_str(), ratio,
                      format_size(n.read).c_str(), format_size(n.written).c_str(),
                      out.name().c_str(), detail->empty() ? "" : " ", detail->c_str());

@@ -21,7 +21,8 @@ struct FileJobOptions {
     bool to_stdout = false;            ///< -c
     bool force = false, remove = false, quiet = false, verbose = false, progress = true;
     bool recursive = false;            ///< -r: directories stand for the files under them
-    bool binary_output = false;        ///< refuse a terminal as output without -f
+    bool binary_output = false;        ///< the output is a frame (compress): refuse a terminal
+                                       ///< as output without -f; the ratio is output / input
 };
 
 /// Output name of one input when neither -c nor -o is given ("x" ->

@@ -63,10 +63,7 @@ int run(const std::string& name, std::vector<std::string> rest) {
 
 int main(int argc, char** argv) {
     using namespace stepzip::cli;
-    if (argc < 2) {
-        print_usage(stderr);
-        return 2;
-    }
+    if (argc < 2) return run("compress", {});  // as zstd: stdin -> stdout, a console refused
     const std::string first = argv[1];
     if (first == "-h" || first == "--help") {
         print_usage(stdout);
