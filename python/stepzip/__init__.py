@@ -116,73 +116,70 @@ def decompress(frame: Any) -> bytes:
     return _stepzip.decompress(frame)
 
 
-class Compressor:
+class _Stream:
+    """A stream handle of the C API fed piece by piece; calls are serialized,
+    so an object may be shared between threads."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+        self._lock = threading.Lock()
+
+    def _feed(self, data: Any) -> bytes:
+        with self._lock:
+            return self._stream.feed(data, False)
+
+    def flush(self) -> bytes:
+        with self._lock:
+            return self._stream.feed(b"", True)
+
+    def copy_stream(self, ifh: BinaryIO, ofh: BinaryIO, read_size: int = 1 << 20) -> Tuple[int, int]:
+        """Reads ``ifh`` to its end and writes the output to ``ofh``; returns
+        (bytes read, bytes written)."""
+        read = written = 0
+        while True:
+            chunk = ifh.read(_int("read_size", read_size))
+            if not chunk:
+                break
+            read += len(chunk)
+            out = self._feed(chunk)
+            written += len(out)
+            ofh.write(out)
+        out = self.flush()
+        written += len(out)
+        ofh.write(out)
+        return read, written
+
+
+class Compressor(_Stream):
     """Compresses piece by piece, as python-zstandard's compressobj():
     ``compress(data)`` returns the frame bytes ready so far, ``flush()`` ends
-    the frame and returns the rest. After flush() the next compress() starts
-    a new frame. Memory stays bounded by the block size. Safe to share
-    between threads (calls are serialized)."""
+    the frame and returns the rest; ``copy_stream(ifh, ofh)`` does both for a
+    file. After flush() the next compress() starts a new frame. Memory stays
+    bounded by the block size."""
 
     def __init__(self, *, level: int = 3, profile: str = "auto",
                  segmenter: Optional[str] = None, format: Optional[str] = None,
                  source: str = "<input>") -> None:
-        self._stream = _stepzip.CStream(_str("profile", profile),
-                                        _str("segmenter", segmenter, True), _int("level", level),
-                                        _str("format", format, True), _str("source", source))
-        self._lock = threading.Lock()
+        super().__init__(_stepzip.CStream(_str("profile", profile),
+                                          _str("segmenter", segmenter, True), _int("level", level),
+                                          _str("format", format, True), _str("source", source)))
 
     def compress(self, data: Any) -> bytes:
-        with self._lock:
-            return self._stream.feed(data, False)
-
-    def flush(self) -> bytes:
-        with self._lock:
-            return self._stream.feed(b"", True)
-
-    def copy_stream(self, ifh: BinaryIO, ofh: BinaryIO, read_size: int = 1 << 20) -> Tuple[int, int]:
-        """Reads ``ifh`` to its end, writes one frame to ``ofh``; returns
-        (bytes read, bytes written)."""
-        return _copy(self.compress, self.flush, ifh, ofh, read_size)
+        return self._feed(data)
 
 
-class Decompressor:
+class Decompressor(_Stream):
     """Decompresses piece by piece: ``decompress(data)`` returns the original
     bytes ready so far, ``flush()`` says the input is complete and returns
-    the rest (bytes after a frame, or a frame cut short, raise Error there).
-    After an error or flush() the object takes a new input."""
+    the rest (bytes after a frame, or a frame cut short, raise Error there);
+    ``copy_stream(ifh, ofh)`` does both for a file. After an error or flush()
+    the object takes a new input."""
 
     def __init__(self) -> None:
-        self._stream = _stepzip.DStream()
-        self._lock = threading.Lock()
+        super().__init__(_stepzip.DStream())
 
     def decompress(self, data: Any) -> bytes:
-        with self._lock:
-            return self._stream.feed(data, False)
-
-    def flush(self) -> bytes:
-        with self._lock:
-            return self._stream.feed(b"", True)
-
-    def copy_stream(self, ifh: BinaryIO, ofh: BinaryIO, read_size: int = 1 << 20) -> Tuple[int, int]:
-        """Reads frames from ``ifh`` to its end, writes the original bytes to
-        ``ofh``; returns (bytes read, bytes written)."""
-        return _copy(self.decompress, self.flush, ifh, ofh, read_size)
-
-
-def _copy(feed: Any, flush: Any, ifh: BinaryIO, ofh: BinaryIO, read_size: int) -> Tuple[int, int]:
-    read = written = 0
-    while True:
-        chunk = ifh.read(_int("read_size", read_size))
-        if not chunk:
-            break
-        read += len(chunk)
-        out = feed(chunk)
-        written += len(out)
-        ofh.write(out)
-    out = flush()
-    written += len(out)
-    ofh.write(out)
-    return read, written
+        return self._feed(data)
 
 
 # ---------------------------------------------------- reverse interpolation

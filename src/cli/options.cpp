@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <optional>
 
 #include "cli_common.hpp"
 
@@ -49,93 +50,94 @@ bool long_takes_value(std::string_view a) noexcept {
 }
 bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
 
+// One command-line item: an option with its value, "--", or a positional
+// argument (`positional`; everything after "--" is positional).
+struct Item {
+    std::string text;
+    std::optional<std::string> value;
+    bool positional = false;
+};
+
+// Splits zstd-style arguments into items (see split_zstd_options).
+std::vector<Item> tokenize(const std::vector<std::string>& args) {
+    std::vector<Item> items;
+    bool options_end = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        const auto next = [&]() -> std::optional<std::string> {
+            if (i + 1 < args.size()) return args[++i];
+            return std::nullopt;
+        };
+        if (options_end || a.size() < 2 || a[0] != '-') {
+            items.push_back({a, std::nullopt, true});
+        } else if (a == "--") {
+            items.push_back({a, std::nullopt});
+            options_end = true;
+        } else if (a[1] == '-') {
+            items.push_back({a, long_takes_value(a) ? next() : std::nullopt});
+        } else {
+            for (std::size_t j = 1; j < a.size();) {
+                if (is_digit(a[j])) {  // -# is the level
+                    std::size_t k = j;
+                    while (k < a.size() && is_digit(a[k])) ++k;
+                    items.push_back({"-L", a.substr(j, k - j)});
+                    j = k;
+                } else if (short_takes_value(a[j])) {  // the rest, or the next argument
+                    items.push_back({std::string("-") + a[j],
+                                     j + 1 < a.size() ? std::optional(a.substr(j + 1)) : next()});
+                    break;
+                } else {
+                    items.push_back({std::string("-") + a[j], std::nullopt});
+                    ++j;
+                }
+            }
+        }
+    }
+    return items;
+}
+
+std::vector<std::string> flatten(const std::vector<Item>& items) {
+    std::vector<std::string> out;
+    for (const Item& it : items) {
+        out.push_back(it.text);
+        if (it.value) out.push_back(*it.value);
+    }
+    return out;
+}
+
+bool is_sink(const Item& it) {
+    return !it.positional && (it.text == "-c" || it.text == "--stdout" || it.text == "-o" ||
+                              it.text == "--output" || it.text.rfind("--output=", 0) == 0);
+}
+
 }  // namespace
 
 std::vector<std::string> split_zstd_options(const std::vector<std::string>& args) {
-    std::vector<std::string> out;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--") {
-            out.insert(out.end(), args.begin() + static_cast<std::ptrdiff_t>(i), args.end());
-            break;
-        }
-        if (a.size() < 2 || a[0] != '-' || a[1] == '-') {
-            out.push_back(a);
-            if (long_takes_value(a) && i + 1 < args.size()) out.push_back(args[++i]);
-            continue;
-        }
-        for (std::size_t j = 1; j < a.size();) {
-            if (is_digit(a[j])) {
-                std::size_t k = j;
-                while (k < a.size() && is_digit(a[k])) ++k;
-                out.push_back("-L");
-                out.push_back(a.substr(j, k - j));
-                j = k;
-                continue;
-            }
-            out.push_back(std::string("-") + a[j]);
-            if (short_takes_value(a[j])) {
-                if (j + 1 < a.size()) out.push_back(a.substr(j + 1));
-                else if (i + 1 < args.size()) out.push_back(args[++i]);
-                break;
-            }
-            ++j;
-        }
+    std::vector<Item> items = tokenize(args);
+    // Of -c and -o, the last one wins.
+    const auto last = std::find_if(items.rbegin(), items.rend(), is_sink);
+    if (last != items.rend()) {
+        Item keep = *last;
+        std::erase_if(items, is_sink);
+        items.insert(items.begin(), std::move(keep));  // before any "--"
     }
-    // -c and -o: the last one wins. Positions of the -o pairs and -c flags
-    // before "--".
-    std::ptrdiff_t last = -1;
-    const auto end = std::find(out.begin(), out.end(), "--");
-    for (auto it = out.begin(); it != end; ++it) {
-        const std::string& a = *it;
-        if (a == "-c" || a == "--stdout" || a == "-o" || a == "--output" || a.rfind("--output=", 0) == 0)
-            last = it - out.begin();
-        if ((a == "-o" || a == "--output" || long_takes_value(a) || a == "-L" || a == "-T") &&
-            it + 1 != end)
-            ++it;
-    }
-    if (last < 0) return out;
-    std::vector<std::string> kept;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        const std::string& a = out[i];
-        if (a == "--") {
-            kept.insert(kept.end(), out.begin() + static_cast<std::ptrdiff_t>(i), out.end());
-            break;
-        }
-        const bool value_next = (a == "-o" || a == "--output" || long_takes_value(a) || a == "-L" ||
-                                 a == "-T") && i + 1 < out.size();
-        const bool sink = a == "-c" || a == "--stdout" || a == "-o" || a == "--output" ||
-                          a.rfind("--output=", 0) == 0;
-        if (sink && static_cast<std::ptrdiff_t>(i) != last) {
-            if (value_next) ++i;
-            continue;
-        }
-        kept.push_back(a);
-        if (value_next) kept.push_back(out[++i]);
-    }
-    return kept;
+    return flatten(items);
 }
 
 std::string take_zstd_mode(std::vector<std::string>& args) {
     std::string mode = "compress";
-    std::vector<std::string> rest;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--") {
-            rest.insert(rest.end(), args.begin() + static_cast<std::ptrdiff_t>(i), args.end());
-            break;
-        }
-        if (a == "-z" || a == "--compress") mode = "compress";
-        else if (a == "-d" || a == "--decompress" || a == "--uncompress") mode = "decompress";
-        else if (a == "-t" || a == "--test") mode = "verify";
-        else if (a == "-l" || a == "--list") mode = "info";
-        else {
-            rest.push_back(a);
-            if ((a == "-o" || a == "-L" || a == "-T" || long_takes_value(a)) && i + 1 < args.size())
-                rest.push_back(args[++i]);
-        }
+    std::vector<Item> items = tokenize(args);
+    std::vector<Item> rest;
+    for (Item& it : items) {
+        const std::string_view t = it.positional ? std::string_view() : std::string_view(it.text);
+        if (t == "-z" || t == "--compress") mode = "compress";
+        else if (t == "-d" || t == "--decompress" || t == "--uncompress") mode = "decompress";
+        else if (t == "-t" || t == "--test") mode = "verify";
+        else if (t == "-l" || t == "--list") mode = "info";
+        else rest.push_back(std::move(it));
     }
-    args = std::move(rest);
+    items = std::move(rest);
+    args = flatten(items);
     return mode;
 }
 
