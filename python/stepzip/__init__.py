@@ -23,6 +23,7 @@ import threading
 from typing import Any, BinaryIO, List, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _stepzip
 from ._stepzip import FORMAT_VERSION, MAX_AXES, PROFILES, Error
@@ -38,6 +39,10 @@ __all__ = [
 
 SEGMENTERS: Tuple[str, ...] = ("greedy", "optimal", "patent")
 
+Steps = npt.NDArray[np.uint16]   # packed STEP/DIR words
+Moves = npt.NDArray[np.int8]     # (n, axes) of -1/0/+1
+Ints = npt.NDArray[np.int64]     # segment totals and phases
+
 # Errc values (include/stepzip/error.hpp) used for argument errors.
 _INVALID_ARGUMENT = 10
 
@@ -48,12 +53,14 @@ def _error(message: str, code: int = _INVALID_ARGUMENT) -> Error:
     return err
 
 
-def _str(name: str, value: Any, optional: bool = False) -> Optional[str]:
-    if value is None and optional:
-        return None
+def _str(name: str, value: Any) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a str, not {type(value).__name__}")
     return value
+
+
+def _opt_str(name: str, value: Any) -> Optional[str]:
+    return None if value is None else _str(name, value)
 
 
 def _int(name: str, value: Any) -> int:
@@ -73,7 +80,7 @@ def _text(name: str, value: Any) -> str:
                         f"not {type(value).__name__}") from None
 
 
-def _integer_array(name: str, value: Any) -> np.ndarray:
+def _integer_array(name: str, value: Any) -> npt.NDArray[Any]:
     arr = np.asarray(value)
     if arr.size == 0:
         return arr.astype(np.int64)
@@ -82,7 +89,7 @@ def _integer_array(name: str, value: Any) -> np.ndarray:
     return arr
 
 
-def _packed(steps: Any, axes: Optional[int]) -> Tuple[np.ndarray, int]:
+def _packed(steps: Any, axes: Optional[int]) -> Tuple[Steps, int]:
     """Packed uint16 steps and the axis count from packed steps or moves."""
     arr = _integer_array("steps", steps)
     if arr.ndim == 2:
@@ -105,8 +112,8 @@ def compress(data: Any, *, profile: str = "auto", segmenter: Optional[str] = Non
     into one .stz frame, as `stepzip compress`: every block's round trip is
     proved first. ``format`` None detects it; ``threads`` 0 uses every core
     (the output does not depend on it)."""
-    return _stepzip.compress(data, _str("profile", profile), _str("segmenter", segmenter, True),
-                             _int("level", level), _str("format", format, True),
+    return _stepzip.compress(data, _str("profile", profile), _opt_str("segmenter", segmenter),
+                             _int("level", level), _opt_str("format", format),
                              _str("source", source), _int("threads", threads))
 
 
@@ -120,7 +127,7 @@ class _Stream:
     """A stream handle of the C API fed piece by piece; calls are serialized,
     so an object may be shared between threads."""
 
-    def __init__(self, stream: Any) -> None:
+    def __init__(self, stream: Union[_stepzip.CStream, _stepzip.DStream]) -> None:
         self._stream = stream
         self._lock = threading.Lock()
 
@@ -161,8 +168,8 @@ class Compressor(_Stream):
                  segmenter: Optional[str] = None, format: Optional[str] = None,
                  source: str = "<input>") -> None:
         super().__init__(_stepzip.CStream(_str("profile", profile),
-                                          _str("segmenter", segmenter, True), _int("level", level),
-                                          _str("format", format, True), _str("source", source)))
+                                          _opt_str("segmenter", segmenter), _int("level", level),
+                                          _opt_str("format", format), _str("source", source)))
 
     def compress(self, data: Any) -> bytes:
         return self._feed(data)
@@ -188,8 +195,8 @@ class Segmentation(NamedTuple):
     """Segments of one chain: ``deltas`` (n, axes) int64 totals, ``phases``
     (n, phase_count) int64 initial values of the evaluation functions, and the
     ``profile`` they were cut under. Unpacks as ``deltas, phases, profile``."""
-    deltas: np.ndarray
-    phases: np.ndarray
+    deltas: Ints
+    phases: Ints
     profile: str
 
 
@@ -207,7 +214,7 @@ def segment(steps: Any, profile: str = "auto", *, axes: Optional[int] = None,
 
 
 def expand(deltas: Any, phases: Any = None, profile: Optional[str] = None, *,
-           axes: Optional[int] = None, moves: bool = False) -> np.ndarray:
+           axes: Optional[int] = None, moves: bool = False) -> npt.NDArray[Any]:
     """Forward interpolation: segments -> the steps they stand for, packed
     (uint16) or, with ``moves=True``, as an (n, axes) int8 array. Takes a
     Segmentation, or deltas, phases and the profile they were cut under."""
@@ -225,19 +232,21 @@ def expand(deltas: Any, phases: Any = None, profile: Optional[str] = None, *,
     if p.ndim == 1 and p.size == 0:
         p = p.reshape(0, 0)
     out = _stepzip.expand(d, p, _str("profile", profile), _int("axes", n_axes))
-    return to_moves(out, n_axes) if moves else out
+    if moves:
+        return to_moves(out, n_axes)
+    return out
 
 
 def interpolate(text: Any, profile: str, *, format: Optional[str] = None,
                 step_size: Union[None, str, int, float, decimal.Decimal] = None,
-                moves: bool = False) -> List[Tuple[Tuple[int, int], np.ndarray]]:
+                moves: bool = False) -> List[Tuple[Tuple[int, int], npt.NDArray[Any]]]:
     """Vectors (G-code or HP-GL, as str or bytes) -> one chain per pen-down
     path, [((x0, y0), steps)], as `stepzip interpolate --profile P`.
     ``step_size`` (millimetres per step) is exact: give a str or Decimal, or
     an int or float (a float is read as its shortest decimal form, 0.1 is
     "0.1")."""
     chains = _stepzip.interpolate(_text("text", text), _str("profile", profile),
-                                  _str("format", format, True), _step_size(step_size))
+                                  _opt_str("format", format), _step_size(step_size))
     if moves:
         return [(start, to_moves(steps, 2)) for start, steps in chains]
     return chains
@@ -259,10 +268,12 @@ def _step_size(value: Any) -> Optional[str]:
     raise TypeError(f"step_size must be a number or a str, not {type(value).__name__}")
 
 
-def freeman_to_steps(codes: str, *, moves: bool = False) -> np.ndarray:
+def freeman_to_steps(codes: str, *, moves: bool = False) -> npt.NDArray[Any]:
     """Freeman-8 digits -> two-axis steps, packed or (with moves=True) (n, 2)."""
     steps = _stepzip.freeman_to_steps(_str("codes", codes))
-    return to_moves(steps, 2) if moves else steps
+    if moves:
+        return to_moves(steps, 2)
+    return steps
 
 
 def steps_to_freeman(steps: Any) -> str:
@@ -271,13 +282,13 @@ def steps_to_freeman(steps: Any) -> str:
     return _stepzip.steps_to_freeman(packed)
 
 
-def to_moves(steps: Any, axes: int = 2) -> np.ndarray:
+def to_moves(steps: Any, axes: int = 2) -> Moves:
     """Packed steps -> an (n, axes) int8 array of -1/0/+1."""
     packed, n_axes = _packed(steps, axes)
     return _stepzip.steps_to_moves(packed, n_axes)
 
 
-def from_moves(moves: Any) -> np.ndarray:
+def from_moves(moves: Any) -> Steps:
     """An (n, axes) array of -1/0/+1 (every row moving at least one axis) ->
     packed uint16 steps."""
     arr = _integer_array("moves", moves)
@@ -300,16 +311,16 @@ class StreamingSegmenter:
                                                 _int("max_held", max_held))
         self._axes = axes
 
-    def push(self, steps: Any) -> Tuple[np.ndarray, np.ndarray]:
+    def push(self, steps: Any) -> Tuple[Ints, Ints]:
         """Pushes steps; returns the (deltas, phases) that became final."""
         packed, _ = _packed(steps, self._axes)
         return self._seg.push(packed)
 
-    def push_step(self, step: int) -> Tuple[np.ndarray, np.ndarray]:
+    def push_step(self, step: int) -> Tuple[Ints, Ints]:
         """Pushes one packed step."""
         return self._seg.push_step(_int("step", step))
 
-    def finish(self) -> Tuple[np.ndarray, np.ndarray]:
+    def finish(self) -> Tuple[Ints, Ints]:
         """Ends the chain: returns the remaining segments and resets."""
         return self._seg.finish()
 

@@ -110,8 +110,14 @@ same_rc "decompress keeps attributes" "-q -d z.fc.zst" "-q -d a.fc.stz"
 cmp -s a.fc "$SRC/corpora/plotter/hershey-grbl.fc" || fail "decompressed bytes differ"
 pass "mode, times and (as root: $owner_checked) owner carried to the output"
 
-# Keyboard input is refused, as zstd refuses it ('script' gives a terminal).
-if command -v script >/dev/null; then
+# 'script' (util-linux) runs a command on a new pseudo-terminal.
+have_pty=no
+if command -v script >/dev/null && script -qec true /dev/null </dev/null >/dev/null 2>&1; then
+  have_pty=yes
+fi
+
+# Keyboard input is refused, as zstd refuses it.
+if [ "$have_pty" = yes ]; then
   fresh
   for cmd in "" "-d" "-t"; do
     set +e
@@ -124,7 +130,7 @@ if command -v script >/dev/null; then
   done
   pass "console stdin refused"
 else
-  skip "console stdin: 'script' (util-linux) is not installed"
+  skip "console stdin: no pseudo-terminal ('script' from util-linux missing or failing)"
 fi
 
 # ---------------------------------------------------------------- habits
@@ -232,14 +238,14 @@ want_rc 0 "-o with two inputs -f" "$Z" -q -f -o two.stz a.fc b.fc
 pass "-o and -c resolved as zstd does"
 
 # Progress on a terminal: bytes read => written and the ratio; -v summary.
-if command -v script >/dev/null; then
+if [ "$have_pty" = yes ]; then
   fresh
   prog=$(script -qec "\"$Z\" -z -f a.fc" /dev/null </dev/null | tr '\r' '\n')
   [[ "$prog" =~ a\.fc:\ 100%\ [0-9.]+\ KiB\ =\>\ [0-9.]+\ (B|KiB)\ \([0-9.]+%\) ]] ||
     fail "progress line: $prog"
   pass "progress shows sizes and the ratio"
 else
-  skip "progress: 'script' (util-linux) is not installed"
+  skip "progress: no pseudo-terminal ('script' from util-linux missing or failing)"
 fi
 fresh
 run zstd -v -f b.fc
