@@ -2,6 +2,7 @@
 // file_driver.hpp).
 #include "file_driver.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -44,6 +45,18 @@ int run_one(const FileJobOptions& o, InputStream& in, OutputFile& out, const Tra
                      out.name().c_str(), detail->empty() ? "" : " ", detail->c_str());
     }
     return 0;
+}
+
+// An output that is the input file itself (the same name, or a hard link)
+// would replace the input before it is read to the end: refused, as zstd
+// refuses it.
+std::optional<Error> overwrites_input(const std::string& input, const std::string& target) {
+    if (is_dash(input) || is_dash(target)) return std::nullopt;
+    struct stat in {}, out {};
+    if (::stat(input.c_str(), &in) != 0 || ::stat(target.c_str(), &out) != 0) return std::nullopt;
+    if (in.st_dev != out.st_dev || in.st_ino != out.st_ino) return std::nullopt;
+    return make_error(Errc::invalid_argument,
+                      input + ": refusing to write the output over the input file");
 }
 
 int remove_input(const std::string& input) {
@@ -93,6 +106,8 @@ int run_file_jobs(const FileJobOptions& options, const TargetFn& target, const W
 
     if (shared) {
         const std::string dest = o.to_stdout ? std::string("-") : o.output;
+        for (const std::string& input : o.inputs)
+            if (auto refused = overwrites_input(input, dest)) return report(*refused);
         auto out = open_output(o, dest, o.inputs.front());
         if (!out) return report(out.error());
         int status = 0;
@@ -124,6 +139,10 @@ int run_file_jobs(const FileJobOptions& options, const TargetFn& target, const W
                 continue;
             }
             dest = std::move(*t);
+        }
+        if (auto refused = overwrites_input(input, dest)) {
+            status = report(*refused);
+            continue;
         }
         InputStream in;
         if (auto r = in.open(input); !r) {

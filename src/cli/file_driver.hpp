@@ -41,7 +41,8 @@ using TransformFn = std::function<Result<std::string>(InputStream& in, const Rea
 /// output and with -o to OUT, one after another (several inputs into one -o
 /// file need -f, as zstd asks before it concatenates). --rm removes an input
 /// only after its own output is complete, never with -c and never when
-/// several inputs share one output. Returns the exit code (0, 1 or 2).
+/// several inputs share one output. An output that is one of the inputs
+/// (same file) is refused. Returns the exit code (0, 1 or 2).
 int run_file_jobs(const FileJobOptions& options, const TargetFn& target, const WantedFn& wanted,
                   const TransformFn& transform);
 

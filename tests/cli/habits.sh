@@ -86,7 +86,25 @@ same_rc "--rm -c" "--rm -q -c z.fc >/dev/null" "--rm -q -c b.fc >/dev/null"
 same_rc "--rm" "--rm -q z.fc" "--rm -q b.fc"
 [ ! -e z.fc ] && [ -f z.fc.zst ] || fail "zstd reference: --rm"
 [ ! -e b.fc ] && [ -f b.fc.stz ] || fail "--rm did not remove the input"
-pass "--rm never with -c"
+fresh
+cp b.fc b2.fc
+cp b.fc z2.fc
+same_rc "--rm -o" "--rm -q -o z2.zst z2.fc" "--rm -q -o b2.stz b2.fc"
+[ ! -e z2.fc ] && [ -f z2.zst ] || fail "zstd reference: --rm -o"
+[ ! -e b2.fc ] && [ -f b2.stz ] || fail "--rm -o did not remove the input"
+pass "--rm never with -c; with -o it removes the input"
+
+# An output over the input itself is refused, the input untouched (zstd too).
+fresh
+cp b.fc z.fc
+same_rc "-o the input" "-q -f -o z.fc z.fc" "-q -f -o b.fc b.fc"
+[ "$src" -ne 0 ] || fail "-f -o INPUT INPUT succeeded"
+grep -q "over the input file" err.log || fail "-o the input: $(cat err.log)"
+cmp -s z.fc b.fc || fail "zstd reference: -o the input changed it"
+printf '0 0 0011223344556677\n' | cmp -s - b.fc || fail "-o the input changed it"
+want_rc 1 "-d -o the input" "$Z" -q -f -d -o b.fc b.fc
+printf '0 0 0011223344556677\n' | cmp -s - b.fc || fail "-d -o the input changed it"
+pass "an output over its input is refused"
 
 # Mode, owner and times go from the input to the output, both ways.
 fresh
