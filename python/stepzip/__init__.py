@@ -34,7 +34,7 @@ __all__ = [
     "Error", "FORMAT_VERSION", "MAX_AXES", "PROFILES", "SEGMENTERS", "Segmentation",
     "compress", "decompress", "Compressor", "Decompressor", "segment", "expand",
     "interpolate", "freeman_to_steps", "steps_to_freeman", "to_moves", "from_moves",
-    "StreamingSegmenter",
+    "to_steps_file", "from_steps_file", "StreamingSegmenter",
 ]
 
 SEGMENTERS: Tuple[str, ...] = ("greedy", "optimal", "patent")
@@ -298,6 +298,35 @@ def from_moves(moves: Any) -> Steps:
         bad = int(np.argmax((arr < -1) | (arr > 1)) // arr.shape[1])
         raise _error(f"moves row {bad}: a step moves each axis by -1, 0 or +1")
     return _stepzip.moves_to_steps(arr.astype(np.int8, copy=False))
+
+
+def to_steps_file(steps: Any, axes: Optional[int] = None) -> bytes:
+    """Steps (packed, or moves of shape (n, axes)) as a `steps` chain file:
+    one STEP/DIR byte per step, up to 4 axes (docs/formats.md). Compress it
+    with ``compress(data, format="steps")``."""
+    packed, n_axes = _packed(steps, axes)
+    if n_axes > 4:
+        raise _error(f"a steps file holds up to 4 axes, not {n_axes}")
+    return packed.astype(np.uint8).tobytes()
+
+
+def from_steps_file(data: Any, *, moves: bool = False,
+                    axes: Optional[int] = None) -> npt.NDArray[Any]:
+    """The steps of a `steps` chain file (any bytes-like object): packed, or
+    with ``moves=True`` an (n, axes) array, ``axes`` defaulting to
+    max(2, highest axis that steps + 1). Idle ticks and DIR bits of resting
+    axes (the file's layout, docs/formats.md) are not steps and are left out."""
+    ticks = np.frombuffer(memoryview(data).cast("B"), dtype=np.uint8)
+    step_bits = ticks & 0x55
+    ticks = ticks[step_bits != 0]
+    step_bits = step_bits[step_bits != 0]
+    packed = (step_bits | (((ticks >> 1) & step_bits) << 1)).astype(np.uint16)
+    if not moves:
+        return packed
+    if axes is None:
+        seen = int(np.bitwise_or.reduce(step_bits)) if step_bits.size else 0
+        axes = max(2, max((a + 1 for a in range(4) if seen >> (2 * a) & 1), default=0))
+    return to_moves(packed, axes)
 
 
 class StreamingSegmenter:

@@ -269,6 +269,22 @@ class MovesTest(unittest.TestCase):
         self.assertTrue(np.array_equal(stepzip.from_moves(moves.astype(np.int64)),
                                        stepzip.from_moves(moves)))
 
+    def test_moves_through_a_steps_file(self):
+        rng = random.Random(6)
+        moves = np.array([[rng.choice((-1, 0, 1)) for _ in range(3)] for _ in range(3000)], np.int8)
+        moves[(moves == 0).all(axis=1), 2] = -1
+        data = stepzip.to_steps_file(moves)
+        self.assertEqual(len(data), len(moves))
+        frame = stepzip.compress(data, format="steps")
+        back = stepzip.from_steps_file(stepzip.decompress(frame), moves=True)
+        self.assertTrue(np.array_equal(back, moves))
+        self.assertTrue(np.array_equal(stepzip.from_steps_file(data), stepzip.from_moves(moves)))
+        # idle ticks and DIR bits of resting axes are not steps
+        ticks = bytes([0x00, 0x01, 0x08, 0x07, 0x02, 0x20])
+        self.assertEqual(stepzip.from_steps_file(ticks, moves=True).tolist(), [[1, 0], [-1, 1]])
+        with self.assertRaises(stepzip.Error):
+            stepzip.to_steps_file(np.ones((3, 5), np.int8))
+
     def test_bad_moves_name_the_row(self):
         with self.assertRaises(stepzip.Error) as ctx:
             stepzip.from_moves(np.array([[1, 0], [0, 0], [1, 1]]))
