@@ -14,7 +14,7 @@
 //  - passes the same bytes to the container's streaming compressor
 //    (compress_stream), which writes the .stz frame block by block.
 // At the end it reports on stderr the segments shown, the most steps ever
-// held back and the frame's size. `stepzip verify OUT.stz --original capture.steps`
+// held back and the frame's size. `stepzip verify OUT.stz capture.steps`
 // proves the file.
 #include <cstdio>
 #include <fstream>

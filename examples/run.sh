@@ -26,7 +26,7 @@ printf 'G0 X0 Y0\nG1 X40 Y17\nG1 X40 Y60\nG1 X-3 Y2\nG1 X0 Y0\n' >shape.gcode
 "$BIN" interpolate --profile grbl --to steps shape.gcode -o capture.steps || fail "make capture"
 "$CAPTURE" capture.stz <capture.steps >live.txt 2>capture.err || fail "capture: $(cat capture.err)"
 cat capture.err
-"$BIN" verify capture.stz --original capture.steps || fail "capture.stz does not verify"
+"$BIN" verify capture.stz capture.steps || fail "capture.stz does not verify"
 [ "$(grep -c '^segment ' live.txt)" -ge 4 ] || fail "capture: expected at least 4 live segments: $(cat live.txt)"
 # the live segments add up to the whole path (it ends where it started)
 sum=$(awk '{x += $2; y += $3} END {print x, y}' live.txt)
@@ -34,7 +34,7 @@ sum=$(awk '{x += $2; y += $3} END {print x, y}' live.txt)
 # the 4-axis engraving log of the corpus
 "$CAPTURE" engrave.stz 4 <"$SRC/corpora/stepper/engrave-4axis.steps" >live4.txt 2>capture4.err \
     || fail "capture 4 axes: $(cat capture4.err)"
-"$BIN" verify engrave.stz --original "$SRC/corpora/stepper/engrave-4axis.steps" || fail "engrave.stz does not verify"
+"$BIN" verify engrave.stz "$SRC/corpora/stepper/engrave-4axis.steps" || fail "engrave.stz does not verify"
 
 if [ "$failures" -ne 0 ]; then
     echo "$failures failure(s)"

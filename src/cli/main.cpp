@@ -17,7 +17,7 @@ const std::vector<Command>& commands() {
     static const std::vector<Command> table = {
         {"compress", "-z", cmd_compress, "chain files -> .stz (lossless, verified)"},
         {"decompress", "-d", cmd_decompress, ".stz -> the original chain files"},
-        {"verify", "-t", cmd_verify, "exit 0 only if the round trip is exact"},
+        {"verify", nullptr, cmd_verify, "INPUT.stz [ORIGINAL]: exit 0 only if the round trip is exact"},
         {"info", "-l", cmd_info, "profile, chains, steps, segments, bits/step"},
         {"interpolate", nullptr, cmd_interpolate, "vectors (G-code, HP-GL) -> steps (forward)"},
         {"segment", nullptr, cmd_segment, "steps -> vectors (G-code, HP-GL, SVG, JSON)"},
@@ -38,7 +38,9 @@ void print_usage(std::FILE* out) {
         std::fprintf(out, "  %-16s %s\n", name.c_str(), c.summary);
     }
     std::fprintf(out,
-                 "\nShort options bundle as in zstd (-zc, -dc, -19 = -L 19, -T4); of -c and -o\n"
+                 "\n-t tests every file named, as zstd's does ('stepzip -t a.stz b.stz');\n"
+                 "'stepzip verify X.stz Y' compares X.stz's content with the original Y.\n"
+                 "Short options bundle as in zstd (-zc, -dc, -19 = -L 19, -T4); of -c and -o\n"
                  "the last one given wins. 'stepzip COMMAND --help' describes a command's options.\n");
 }
 
@@ -48,6 +50,10 @@ bool zstd_like(std::string_view name) {
 }
 
 int run(const std::string& name, std::vector<std::string> rest) {
+    if (name == "test") {  // zstd's -t: every file named is tested (see cmd_test)
+        rest.insert(rest.begin(), "-t");
+        return cmd_test(rest);
+    }
     for (const Command& c : commands())
         if (name == c.name) {
             std::vector<std::string> args{name};

@@ -132,7 +132,7 @@ std::string take_zstd_mode(std::vector<std::string>& args) {
         const std::string_view t = it.positional ? std::string_view() : std::string_view(it.text);
         if (t == "-z" || t == "--compress") mode = "compress";
         else if (t == "-d" || t == "--decompress" || t == "--uncompress") mode = "decompress";
-        else if (t == "-t" || t == "--test") mode = "verify";
+        else if (t == "-t" || t == "--test") mode = "test";
         else if (t == "-l" || t == "--list") mode = "info";
         else rest.push_back(std::move(it));
     }

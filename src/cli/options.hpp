@@ -32,8 +32,9 @@ std::vector<std::string> split_zstd_options(const std::vector<std::string>& args
 
 /// The command named by a zstd mode option in `args` (already split):
 /// "-z"/"--compress" -> "compress", "-d"/"--decompress"/"--uncompress" ->
-/// "decompress", "-t"/"--test" -> "verify", "-l"/"--list" -> "info"; the
-/// last one wins, "compress" when there is none. The mode options are
+/// "decompress", "-t"/"--test" -> "test" (verify's check of every file
+/// named, see cmd_test), "-l"/"--list" -> "info"; the last one wins,
+/// "compress" when there is none. The mode options are
 /// removed from `args`.
 std::string take_zstd_mode(std::vector<std::string>& args);
 

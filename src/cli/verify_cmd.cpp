@@ -1,4 +1,5 @@
-// stepzip verify: exit 0 only if the .stz decodes exactly (SPEC section 6).
+// stepzip verify INPUT.stz [ORIGINAL] (SPEC section 6) and zstd's -t FILE...: exit 0
+// only if every .stz decodes exactly.
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <iostream>
@@ -57,27 +58,44 @@ int verify_one(const std::string& file, InputStream* original, bool quiet) {
     return 0;
 }
 
-}  // namespace
-
-int cmd_verify(const std::vector<std::string>& args) {
+// The two forms of the command: SPEC's `verify INPUT.stz [ORIGINAL]` and
+// zstd's `-t INPUT.stz...`, which tests every file named (`each`).
+int run_verify(const std::vector<std::string>& args, bool each) {
     std::vector<std::string> files;
     std::string original;
     bool quiet = false, recursive = false;
+    const std::string name = each ? "-t" : "verify";  // for messages
     po::options_description desc(
-        "Usage: stepzip verify INPUT.stz... [--original FILE] [-r] [-q]\n"
-        "       stepzip -t INPUT.stz...   (zstd's form)\n"
-        "Decodes every INPUT.stz and checks every block and the content XXH64; with\n"
-        "--original FILE (one input), also compares the decoded bytes with FILE.\n"
-        "Exit 0 only if every round trip is exact.\n"
-        "Options");
+        each ? "Usage: stepzip -t INPUT.stz... [--original FILE] [-r] [-q]   (zstd's form)\n"
+               "Decodes every INPUT.stz and checks every block and the content XXH64; with\n"
+               "--original FILE (one input), also compares the decoded bytes with FILE.\n"
+               "Exit 0 only if every round trip is exact.\n"
+               "Options"
+             : "Usage: stepzip verify INPUT.stz [ORIGINAL] [-q]\n"
+               "       stepzip verify -r DIR [-q]\n"
+               "Decodes INPUT.stz and checks every block and the content XXH64; with\n"
+               "ORIGINAL, also compares the decoded bytes with it. Exit 0 only if the\n"
+               "round trip is exact. ('stepzip -t A.stz B.stz' tests several files.)\n"
+               "Options");
     desc.add_options()
         ("help,h", "show this help")
-        ("original", po::value(&original), "compare the decoded bytes with FILE (one input only)")
+        ("original", po::value(&original),
+         each ? "compare the decoded bytes with FILE (one input only)" : "the same as ORIGINAL")
         ("recursive,r", po::bool_switch(&recursive), "test the *.stz files under directories")
         ("quiet,q", po::bool_switch(&quiet), "print nothing on success");
     po::variables_map vm;
-    if (auto exit_code = parse_command("verify", args, desc, "file", po::value(&files), -1, vm))
+    if (auto exit_code = parse_command(name, args, desc, "file", po::value(&files), -1, vm))
         return *exit_code;
+    if (!each && files.size() > 2)
+        return usage_error("verify: takes INPUT.stz [ORIGINAL], " + std::to_string(files.size()) +
+                           " files given ('stepzip -t' tests several files)");
+    if (!each && files.size() == 2) {
+        if (!original.empty())
+            return usage_error("verify: ORIGINAL given twice (" + files[1] + " and --original " +
+                               original + ")");
+        original = files[1];
+        files.pop_back();
+    }
     if (files.empty()) files.push_back("-");
     if (recursive) {
         auto expanded = expand_directories(
@@ -86,7 +104,7 @@ int cmd_verify(const std::vector<std::string>& args) {
         files = std::move(*expanded);
     }
     if (!original.empty() && files.size() != 1)
-        return usage_error("verify: --original compares one input, " + std::to_string(files.size()) +
+        return usage_error(name + ": an original compares one input, " + std::to_string(files.size()) +
                            " given");
     if (auto refused = console_stdin_refused(files, false)) return report(*refused);
     InputStream orig;
@@ -97,5 +115,11 @@ int cmd_verify(const std::vector<std::string>& args) {
         if (verify_one(f, original.empty() ? nullptr : &orig, quiet) != 0) status = 1;
     return status;
 }
+
+}  // namespace
+
+int cmd_verify(const std::vector<std::string>& args) { return run_verify(args, false); }
+
+int cmd_test(const std::vector<std::string>& args) { return run_verify(args, true); }
 
 }  // namespace stepzip::cli

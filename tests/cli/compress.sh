@@ -61,8 +61,8 @@ check "--rm" "$Z" compress --rm r.fc
 
 # verify and info
 check "verify" "$Z" verify a.fc.stz
-check "verify against the original" "$Z" -t a.fc.stz --original a.fc
-refuse "verify against another file" "$Z" verify a.fc.stz --original b.fc
+check "verify against the original" "$Z" verify a.fc.stz a.fc
+refuse "verify against another file" "$Z" verify a.fc.stz b.fc
 grep -q 'differ' err.log || { echo "FAIL: verify mismatch message"; fails=$((fails + 1)); }
 check "info" "$Z" info named.bin
 for k in profile: chains: steps: segments: bits/step: 'compressed size:' patent:; do

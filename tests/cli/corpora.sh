@@ -22,7 +22,7 @@ for f in "$src"/corpora/*/*.fc "$src"/corpora/*/*.steps "$src"/corpora/*/*.hpgl 
     if ! "$stepzip" compress -q -f -L $level "$input" -o "$work/x.stz"; then
       echo "FAIL compress -L $level: $f"; fail=1; continue
     fi
-    if ! "$stepzip" verify "$work/x.stz" --original "$input" >/dev/null; then
+    if ! "$stepzip" verify "$work/x.stz" "$input" >/dev/null; then
       echo "FAIL verify -L $level: $f"; fail=1; continue
     fi
     "$stepzip" decompress -q -f "$work/x.stz" -o "$work/x.out"

@@ -221,11 +221,44 @@ same_rc "-t two frames" "-q -t a.fc.zst b.fc.zst" "-q -t a.fc.stz b.fc.stz"
 [ "$src" -eq 0 ] || fail "-t a.stz b.stz"
 same_rc "-t frame and non-frame" "-q -t a.fc.zst b.fc" "-q -t a.fc.stz b.fc"
 [ "$src" -eq 1 ] || fail "-t with a non-frame succeeded"
+same_rc "--test two frames" "-q --test a.fc.zst b.fc.zst" "-q --test a.fc.stz b.fc.stz"
+[ "$src" -eq 0 ] || fail "--test a.stz b.stz"
+want_rc 0 "-t two frames, each reported" "$Z" -t a.fc.stz b.fc.stz
+grep -q '^a\.fc\.stz: OK' out.log && grep -q '^b\.fc\.stz: OK' out.log \
+  || fail "-t a.stz b.stz did not test both: $(cat out.log)"
 want_rc 0 "-t --original" "$Z" -t a.fc.stz --original a.fc
 want_rc 1 "-t --original other" "$Z" -t a.fc.stz --original b.fc
 grep -q "differ" err.log || fail "-t --original: no 'differ' in $(cat err.log)"
 want_rc 2 "--original with two inputs" "$Z" -t a.fc.stz b.fc.stz --original a.fc
 pass "-t a.stz b.stz tests both; --original compares"
+
+# -t -r DIR tests every frame under DIR; a damaged one fails the run.
+for tool in z s; do mkdir -p "$tool/d/e"; done
+cp a.fc.zst z/d/ && cp b.fc.zst z/d/e/
+cp a.fc.stz s/d/ && cp b.fc.stz s/d/e/
+same_rc "-t -r" "-q -t -r z/d" "-q -t -r s/d"
+[ "$src" -eq 0 ] || fail "-t -r DIR"
+want_rc 0 "-t -r, each reported" "$Z" -t -r s/d
+[ "$(grep -c ': OK' out.log)" -eq 2 ] || fail "-t -r DIR did not test both frames: $(cat out.log)"
+head -c 100 a.fc.zst > z/d/e/cut.fc.zst
+head -c 100 a.fc.stz > s/d/e/cut.fc.stz
+same_rc "-t -r with a truncated frame" "-q -t -r z/d" "-q -t -r s/d"
+[ "$src" -eq 1 ] || fail "-t -r with a truncated frame succeeded"
+pass "-t -r DIR tests every frame under DIR"
+
+# The verify command keeps its own form (SPEC section 6, relied on by
+# scripts): verify INPUT.stz [ORIGINAL], where a second file is the original
+# the content is compared with, not a second frame to test.
+want_rc 0 "verify X.stz ORIGINAL" "$Z" verify a.fc.stz a.fc
+grep -q "identical to a.fc" out.log || fail "verify X.stz ORIGINAL did not compare: $(cat out.log)"
+want_rc 1 "verify X.stz OTHER" "$Z" verify a.fc.stz b.fc
+grep -q "differ" err.log || fail "verify X.stz OTHER: no 'differ' in $(cat err.log)"
+want_rc 1 "verify X.stz Y.stz compares with Y.stz" "$Z" verify a.fc.stz b.fc.stz
+grep -q "differ from b.fc.stz" err.log || fail "verify X.stz Y.stz: $(cat err.log)"
+want_rc 0 "verify --original" "$Z" verify a.fc.stz --original a.fc
+want_rc 2 "verify X.stz ORIGINAL --original" "$Z" verify a.fc.stz a.fc --original a.fc
+want_rc 2 "verify with three files" "$Z" verify a.fc.stz b.fc.stz a.fc
+pass "verify INPUT.stz [ORIGINAL] compares with ORIGINAL; -t tests every file"
 
 # -T on -d is accepted.
 same_rc "-d -T2" "-q -d -T2 -c a.fc.zst >/dev/null" "-q -d -T2 -c a.fc.stz >/dev/null"
