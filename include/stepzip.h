@@ -20,7 +20,8 @@
  * Thread safety: a handle is used by one thread at a time; distinct handles
  * share nothing, so several threads may each use their own. The free
  * functions without a handle (stepzip_version_string, stepzip_result_name,
- * stepzip_segment_steps, stepzip_expand_segments) are thread-safe.
+ * stepzip_profile_from_name, stepzip_profile_name, stepzip_segment_steps,
+ * stepzip_expand_segments) are thread-safe.
  *
  * What is not promised: the compressed bytes may change between versions of
  * the library (only the round trip is guaranteed, and every version decodes
@@ -177,6 +178,17 @@ stepzip_compress(struct stepzip_compressor *c, enum stepzip_format format,
  * STEPZIP_SHORT_BUFFER with the exact size needed. Thread-safe. */
 STEPZIP_API size_t stepzip_compress_bound(size_t in_nbytes);
 
+/* The profile named `name` ("eval4", "eval8", "patent", "grbl", "marlin",
+ * or "auto" for STEPZIP_PROFILE_AUTO), as the command line's --profile
+ * takes them, stored in *profile. Errors: STEPZIP_INVALID_ARGUMENT for an
+ * unknown name or NULL pointers (*profile unchanged). Thread-safe. */
+STEPZIP_API enum stepzip_result stepzip_profile_from_name(const char *name,
+                                                          enum stepzip_profile *profile);
+
+/* The name of `profile` ("auto" for STEPZIP_PROFILE_AUTO); "unknown" for a
+ * value outside the enum. Never NULL. Thread-safe. */
+STEPZIP_API const char *stepzip_profile_name(enum stepzip_profile profile);
+
 /* The last error of `c` as one line; "" when the last call succeeded. */
 STEPZIP_API const char *stepzip_compressor_error(const struct stepzip_compressor *c);
 
@@ -295,6 +307,78 @@ STEPZIP_API size_t stepzip_segmenter_held(const struct stepzip_segmenter *s);
 STEPZIP_API const char *stepzip_segmenter_error(const struct stepzip_segmenter *s);
 
 STEPZIP_API void stepzip_free_segmenter(struct stepzip_segmenter *s);
+
+/* ------------------------------------------- streaming (de)compression */
+/* Frames compressed and decompressed through caller buffers of any size, as
+ * with ZSTD_CStream / ZSTD_DStream: memory stays bounded by the block size
+ * (not the input size), and no bound on the output size is needed, since
+ * output is handed over as the caller's buffer has room for it.
+ *
+ * Each call takes what it can of `in` (advancing in->pos) and writes what it
+ * has into `out` (advancing out->pos). `end` says whether `in` holds the
+ * last bytes of the input. The frame is complete, and every output byte
+ * delivered, when a call with STEPZIP_END returns STEPZIP_OK and stores 0 in
+ * *remaining; until then, call again (with the same or more input, and room
+ * in `out`). *remaining is otherwise a nonzero hint: the output bytes ready
+ * to be delivered, or 1 when the coder needs more input or time.
+ * After a frame completes, the next call starts the next frame with the same
+ * settings. After an error, the handle repeats the error until
+ * stepzip_*stream_reset(). Bytes already delivered before an error are part
+ * of an incomplete output: discard them.
+ *
+ * The coder runs on one helper thread per handle, started by the first call
+ * and ended by the frame's end, a reset or the free; it reads the caller's
+ * input only while a call is running. Handles are used by one thread at a
+ * time, as every handle here. */
+struct stepzip_in_buffer {
+    const void *src; /* the input */
+    size_t size;     /* its size */
+    size_t pos;      /* bytes already taken; advanced by the call */
+};
+struct stepzip_out_buffer {
+    void *dst;   /* room for output */
+    size_t size; /* its size */
+    size_t pos;  /* bytes already written; advanced by the call */
+};
+enum stepzip_end_directive {
+    STEPZIP_CONTINUE = 0, /* more input follows */
+    STEPZIP_END = 1       /* `in` ends the input: finish the frame */
+};
+
+struct stepzip_cstream;
+/* A compression stream with the settings of `settings` (level, profile,
+ * segmenter, source name; copied, so `settings` may be freed) for chain
+ * files of format `format` (AUTO: detected from the first bytes). NULL when
+ * out of memory or for a NULL `settings` or an unknown format. */
+STEPZIP_API struct stepzip_cstream *
+stepzip_alloc_cstream(const struct stepzip_compressor *settings, enum stepzip_format format);
+/* Compresses: see above. Errors: as stepzip_compress() (never
+ * STEPZIP_SHORT_BUFFER), and STEPZIP_INVALID_ARGUMENT for NULL pointers or
+ * a buffer position past its size. */
+STEPZIP_API enum stepzip_result
+stepzip_compress_stream(struct stepzip_cstream *cs, struct stepzip_out_buffer *out,
+                        struct stepzip_in_buffer *in, enum stepzip_end_directive end,
+                        size_t *remaining);
+/* Abandons the current frame (if any) and clears an error. */
+STEPZIP_API void stepzip_cstream_reset(struct stepzip_cstream *cs);
+STEPZIP_API const char *stepzip_cstream_error(const struct stepzip_cstream *cs);
+STEPZIP_API void stepzip_free_cstream(struct stepzip_cstream *cs);
+
+struct stepzip_dstream;
+/* A decompression stream; NULL when out of memory. */
+STEPZIP_API struct stepzip_dstream *stepzip_alloc_dstream(void);
+/* Decompresses: see above. The decoder knows that the input is complete
+ * only from STEPZIP_END (bytes after a frame are an error, see
+ * docs/FORMAT.md), so the last input must come with STEPZIP_END.
+ * Errors: as stepzip_decompress() (never STEPZIP_SHORT_BUFFER), and
+ * STEPZIP_INVALID_ARGUMENT for NULL pointers or a position past its size. */
+STEPZIP_API enum stepzip_result
+stepzip_decompress_stream(struct stepzip_dstream *ds, struct stepzip_out_buffer *out,
+                          struct stepzip_in_buffer *in, enum stepzip_end_directive end,
+                          size_t *remaining);
+STEPZIP_API void stepzip_dstream_reset(struct stepzip_dstream *ds);
+STEPZIP_API const char *stepzip_dstream_error(const struct stepzip_dstream *ds);
+STEPZIP_API void stepzip_free_dstream(struct stepzip_dstream *ds);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,8 @@
 /* The C interface (stepzip.h), compiled as C: compression round trip with
  * caller buffers and STEPZIP_SHORT_BUFFER, errors with messages, reverse
- * interpolation and its inverse, and the streaming segmenter's bound. */
+ * interpolation and its inverse, the streaming segmenter's bound, profiles
+ * by name, and streaming compression and decompression through small
+ * caller buffers. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -176,6 +178,156 @@ static void test_streaming(void) {
     stepzip_free_segmenter(u);
 }
 
+static void test_profile_names(void) {
+    enum stepzip_profile p = STEPZIP_PROFILE_EVAL8;
+    CHECK(stepzip_profile_from_name("grbl", &p) == STEPZIP_OK && p == STEPZIP_PROFILE_GRBL);
+    CHECK(stepzip_profile_from_name("auto", &p) == STEPZIP_OK && p == STEPZIP_PROFILE_AUTO);
+    CHECK(stepzip_profile_from_name("eval4", &p) == STEPZIP_OK && p == STEPZIP_PROFILE_EVAL4);
+    CHECK(stepzip_profile_from_name("bogus", &p) == STEPZIP_INVALID_ARGUMENT);
+    CHECK(p == STEPZIP_PROFILE_EVAL4); /* unchanged by the failure */
+    CHECK(stepzip_profile_from_name(NULL, &p) == STEPZIP_INVALID_ARGUMENT);
+    CHECK(strcmp(stepzip_profile_name(STEPZIP_PROFILE_MARLIN), "marlin") == 0);
+    CHECK(strcmp(stepzip_profile_name(STEPZIP_PROFILE_AUTO), "auto") == 0);
+    CHECK(strcmp(stepzip_profile_name((enum stepzip_profile)42), "unknown") == 0);
+    /* every name maps back to its profile */
+    for (int i = STEPZIP_PROFILE_AUTO; i <= STEPZIP_PROFILE_MARLIN; ++i) {
+        CHECK(stepzip_profile_from_name(stepzip_profile_name((enum stepzip_profile)i), &p) ==
+              STEPZIP_OK);
+        CHECK((int)p == i);
+    }
+}
+
+/* A freeman file of `lines` chains with runs and turns, in a malloc'd buffer. */
+static char *make_chains(int lines, size_t *n) {
+    char *text = malloc((size_t)lines * 128);
+    size_t at = 0;
+    for (int i = 0; i < lines; ++i) {
+        at += (size_t)sprintf(text + at, "%d %d ", i % 97, -(i % 89));
+        for (int k = 0; k < 100; ++k) text[at++] = (char)('0' + ((k / (5 + i % 7) + i) % 8 < 3 ? (i % 8) : ((i + 1) % 8)));
+        text[at++] = '\n';
+    }
+    *n = at;
+    return text;
+}
+
+/* Appends everything in `out` to `dst` at *dst_n and empties `out`. */
+static void drain(struct stepzip_out_buffer *out, char *dst, size_t *dst_n, size_t cap) {
+    CHECK(*dst_n + out->pos <= cap);
+    if (*dst_n + out->pos <= cap) memcpy(dst + *dst_n, out->dst, out->pos);
+    *dst_n += out->pos;
+    out->pos = 0;
+}
+
+typedef enum stepzip_result (*stream_fn)(void *, struct stepzip_out_buffer *,
+                                         struct stepzip_in_buffer *, enum stepzip_end_directive,
+                                         size_t *);
+static enum stepzip_result cstream_call(void *h, struct stepzip_out_buffer *o,
+                                        struct stepzip_in_buffer *i, enum stepzip_end_directive e,
+                                        size_t *r) {
+    return stepzip_compress_stream((struct stepzip_cstream *)h, o, i, e, r);
+}
+static enum stepzip_result dstream_call(void *h, struct stepzip_out_buffer *o,
+                                        struct stepzip_in_buffer *i, enum stepzip_end_directive e,
+                                        size_t *r) {
+    return stepzip_decompress_stream((struct stepzip_dstream *)h, o, i, e, r);
+}
+
+/* Pushes `src` through a stream in pieces of `piece` bytes with an output
+ * buffer of `room` bytes, as a zstd streaming loop does; the output goes to
+ * `dst`. Returns the first result that is not STEPZIP_OK, or STEPZIP_OK. */
+static enum stepzip_result pump(stream_fn call, void *h, const char *src, size_t n, size_t piece,
+                                size_t room, char *dst, size_t cap, size_t *dst_n) {
+    char *buf = malloc(room);
+    struct stepzip_out_buffer out = {buf, room, 0};
+    enum stepzip_result r = STEPZIP_OK;
+    size_t remaining = 1;
+    *dst_n = 0;
+    for (size_t off = 0; off < n && r == STEPZIP_OK; off += piece) {
+        struct stepzip_in_buffer in = {src + off, off + piece < n ? piece : n - off, 0};
+        while (in.pos < in.size && r == STEPZIP_OK) {
+            r = call(h, &out, &in, STEPZIP_CONTINUE, &remaining);
+            drain(&out, dst, dst_n, cap);
+        }
+    }
+    struct stepzip_in_buffer none = {NULL, 0, 0};
+    while (r == STEPZIP_OK && remaining != 0) {
+        r = call(h, &out, &none, STEPZIP_END, &remaining);
+        drain(&out, dst, dst_n, cap);
+    }
+    free(buf);
+    return r;
+}
+
+static void test_streams(void) {
+    size_t n = 0;
+    char *text = make_chains(3000, &n);
+    struct stepzip_compressor *c =
+        stepzip_alloc_compressor(3, STEPZIP_PROFILE_AUTO, STEPZIP_SEGMENTER_DEFAULT);
+    const size_t cap = stepzip_compress_bound(n) + n;
+    char *one_shot = malloc(cap), *streamed = malloc(cap), *back = malloc(n + 1);
+    size_t one_n = 0, streamed_n = 0, back_n = 0;
+    CHECK(stepzip_compress(c, STEPZIP_FORMAT_FREEMAN, text, n, one_shot, cap, &one_n) == STEPZIP_OK);
+
+    /* the streamed frame equals the one-shot frame, through 777-byte input
+     * pieces and a 100-byte output buffer */
+    struct stepzip_cstream *cs = stepzip_alloc_cstream(c, STEPZIP_FORMAT_FREEMAN);
+    stepzip_free_compressor(c); /* the stream keeps its own copy of the settings */
+    CHECK(cs != NULL);
+    CHECK(pump(cstream_call, cs, text, n, 777, 100, streamed, cap, &streamed_n) == STEPZIP_OK);
+    CHECK(streamed_n == one_n && memcmp(streamed, one_shot, one_n) == 0);
+    CHECK(streamed_n > 100);
+    /* the handle starts the next frame after a complete one */
+    CHECK(pump(cstream_call, cs, text, n, 4096, 1 << 16, streamed, cap, &streamed_n) == STEPZIP_OK);
+    CHECK(streamed_n == one_n && memcmp(streamed, one_shot, one_n) == 0);
+
+    /* decoding through 333-byte pieces and a 50-byte buffer gives the text */
+    struct stepzip_dstream *ds = stepzip_alloc_dstream();
+    CHECK(ds != NULL);
+    CHECK(pump(dstream_call, ds, one_shot, one_n, 333, 50, back, n + 1, &back_n) == STEPZIP_OK);
+    CHECK(back_n == n && memcmp(back, text, n) == 0);
+
+    /* a damaged frame is an error with a message, repeated until a reset */
+    one_shot[one_n / 2] ^= 0x21;
+    enum stepzip_result r = pump(dstream_call, ds, one_shot, one_n, 333, 50, back, n + 1, &back_n);
+    CHECK(r != STEPZIP_OK);
+    CHECK(strlen(stepzip_dstream_error(ds)) > 0);
+    one_shot[one_n / 2] ^= 0x21;
+    struct stepzip_out_buffer out = {back, n, 0};
+    struct stepzip_in_buffer in = {one_shot, one_n, 0};
+    size_t remaining = 0;
+    CHECK(stepzip_decompress_stream(ds, &out, &in, STEPZIP_END, &remaining) == r);
+    stepzip_dstream_reset(ds);
+    CHECK(strcmp(stepzip_dstream_error(ds), "") == 0);
+    CHECK(pump(dstream_call, ds, one_shot, one_n, 1 << 20, 1 << 20, back, n + 1, &back_n) == STEPZIP_OK);
+    CHECK(back_n == n && memcmp(back, text, n) == 0);
+
+    /* bad chain text: the error names the line and column */
+    const char bad[] = "0 0 0011\n1 1 0192\n";
+    r = pump(cstream_call, cs, bad, sizeof bad - 1, 5, 64, streamed, cap, &streamed_n);
+    CHECK(r == STEPZIP_SYNTAX);
+    CHECK(strstr(stepzip_cstream_error(cs), ":2:") != NULL);
+    stepzip_cstream_reset(cs);
+
+    /* a frame abandoned halfway: freeing the handle ends its coder */
+    struct stepzip_out_buffer small = {streamed, 10, 0};
+    struct stepzip_in_buffer half = {text, n / 2, 0};
+    CHECK(stepzip_compress_stream(cs, &small, &half, STEPZIP_CONTINUE, &remaining) == STEPZIP_OK);
+    CHECK(remaining != 0);
+    stepzip_free_cstream(cs);
+
+    /* inconsistent buffers */
+    struct stepzip_in_buffer past = {one_shot, 4, 5};
+    CHECK(stepzip_decompress_stream(ds, &out, &past, STEPZIP_END, &remaining) == STEPZIP_INVALID_ARGUMENT);
+    CHECK(stepzip_alloc_cstream(NULL, STEPZIP_FORMAT_AUTO) == NULL);
+    stepzip_free_dstream(ds);
+    stepzip_free_cstream(NULL);
+    stepzip_free_dstream(NULL);
+    free(text);
+    free(one_shot);
+    free(streamed);
+    free(back);
+}
+
 int main(void) {
     CHECK(strcmp(stepzip_version_string(), STEPZIP_VERSION_STRING) == 0);
     CHECK(strcmp(stepzip_result_name(STEPZIP_OK), "ok") == 0);
@@ -183,6 +335,8 @@ int main(void) {
     test_round_trip();
     test_segment_and_expand();
     test_streaming();
+    test_profile_names();
+    test_streams();
     if (failures) {
         fprintf(stderr, "%d check(s) failed\n", failures);
         return 1;

@@ -3,12 +3,17 @@
 #include "stepzip.h"
 
 #include <algorithm>
+#include <condition_variable>
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <functional>
+#include <mutex>
 #include <new>
+#include <optional>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "stepzip/container.hpp"
@@ -111,6 +116,197 @@ enum stepzip_result copy_out(const std::string& bytes, void* out, size_t avail,
     return STEPZIP_OK;
 }
 
+
+// Runs a pull-style coder (compress_stream / decompress_stream, which read
+// through a ReadFn and write through a WriteFn) on a helper thread and feeds
+// it from push-style calls with caller buffers (the *_stream functions).
+// The helper touches the caller's input only under the lock and only while a
+// call offers it; its output waits in `pending_`, at most about kOutHigh
+// bytes beyond one write, until a call has room for it.
+class Pump {
+public:
+    using Coder = std::function<stepzip::Result<stepzip::FrameInfo>(const stepzip::ReadFn&,
+                                                                    const stepzip::WriteFn&)>;
+    explicit Pump(Coder coder) : coder_(std::move(coder)) {}
+    ~Pump() { stop(); }
+    Pump(const Pump&) = delete;
+    Pump& operator=(const Pump&) = delete;
+
+    enum stepzip_result step(stepzip_out_buffer* out, stepzip_in_buffer* in, bool end,
+                             size_t* remaining) {
+        if (failed_) return fail(&error, failed_code_, saved_error_.c_str());
+        error.clear();
+        std::unique_lock lk(m_);
+        if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
+        in_ = static_cast<const char*>(in->src) + in->pos;
+        in_left_ = in->size - in->pos;
+        in_taken_ = 0;
+        end_ = end;
+        offered_ = true;
+        if (in_left_ > 0 || end_) need_input_ = false;
+        cv_.notify_all();
+        for (;;) {
+            deliver(out);
+            if (finished_ || need_input_ || out->pos == out->size) break;
+            cv_.wait(lk);
+        }
+        in->pos += in_taken_;
+        in_ = nullptr;
+        in_left_ = 0;
+        offered_ = false;
+        const std::size_t left = pending_.size() - pending_pos_;
+        if (finished_ && failure_) {
+            failed_ = true;
+            failed_code_ = to_result(failure_->code);
+            saved_error_ = failure_->message;
+            lk.unlock();
+            stop();
+            return fail(&error, failed_code_, saved_error_.c_str());
+        }
+        if (finished_ && left == 0) {
+            // The frame is complete and delivered: ready for the next one.
+            lk.unlock();
+            stop();
+            *remaining = 0;
+            return STEPZIP_OK;
+        }
+        *remaining = left > 0 ? left : 1;
+        return STEPZIP_OK;
+    }
+
+    // Abandons the frame being coded (if any) and clears every state.
+    void stop() noexcept {
+        {
+            std::lock_guard lk(m_);
+            cancel_ = true;
+            cv_.notify_all();
+        }
+        if (worker_.joinable()) worker_.join();
+        std::lock_guard lk(m_);
+        in_ = nullptr;
+        in_left_ = in_taken_ = 0;
+        end_ = offered_ = cancel_ = need_input_ = need_room_ = finished_ = false;
+        failure_.reset();
+        pending_.clear();
+        pending_pos_ = 0;
+    }
+
+    void reset() noexcept {
+        stop();
+        failed_ = false;
+        error.clear();
+    }
+
+    std::string error;
+
+private:
+    static constexpr std::size_t kOutHigh = std::size_t{1} << 20;
+
+    // Moves pending output into `out` (the lock is held).
+    void deliver(stepzip_out_buffer* out) {
+        const std::size_t n = std::min(pending_.size() - pending_pos_, out->size - out->pos);
+        if (n == 0) return;
+        std::memcpy(static_cast<char*>(out->dst) + out->pos, pending_.data() + pending_pos_, n);
+        out->pos += n;
+        pending_pos_ += n;
+        if (pending_pos_ == pending_.size()) {
+            pending_.clear();
+            pending_pos_ = 0;
+        }
+        if (pending_.size() - pending_pos_ <= kOutHigh && need_room_) {
+            need_room_ = false;
+            cv_.notify_all();
+        }
+    }
+
+    void run() {
+        const stepzip::ReadFn read = [this](char* buf, std::size_t cap) -> stepzip::Result<std::size_t> {
+            std::unique_lock lk(m_);
+            while (!cancel_ && !(offered_ && (in_left_ > 0 || end_))) {
+                need_input_ = true;
+                cv_.notify_all();
+                cv_.wait(lk);
+            }
+            need_input_ = false;
+            if (cancel_) return stepzip::make_error(Errc::io, "stream abandoned");
+            const std::size_t n = std::min(cap, in_left_);
+            if (n) std::memcpy(buf, in_, n);
+            in_ += n;
+            in_left_ -= n;
+            in_taken_ += n;
+            return n;  // 0 only at the end the caller announced
+        };
+        const stepzip::WriteFn write = [this](std::string_view bytes) -> stepzip::Result<void> {
+            std::unique_lock lk(m_);
+            pending_.append(bytes);
+            cv_.notify_all();
+            while (!cancel_ && pending_.size() - pending_pos_ > kOutHigh) {
+                need_room_ = true;
+                cv_.notify_all();
+                cv_.wait(lk);
+            }
+            need_room_ = false;
+            if (cancel_) return stepzip::make_error(Errc::io, "stream abandoned");
+            return {};
+        };
+        std::optional<stepzip::Error> failure;
+        try {
+            auto r = coder_(read, write);
+            if (!r) failure = r.error();
+        } catch (const std::bad_alloc&) {
+            failure = stepzip::Error{Errc::io, "out of memory"};
+        } catch (const std::exception& e) {
+            failure = stepzip::Error{Errc::io, std::string("internal error: ") + e.what()};
+        }
+        std::lock_guard lk(m_);
+        finished_ = true;
+        failure_ = std::move(failure);
+        cv_.notify_all();
+    }
+
+    Coder coder_;
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::thread worker_;
+    const char* in_ = nullptr;  // the input offered by the running call
+    std::size_t in_left_ = 0, in_taken_ = 0;
+    bool end_ = false, offered_ = false, cancel_ = false;
+    bool need_input_ = false;  // the helper waits for input
+    bool need_room_ = false;   // the helper waits for its output to be taken
+    bool finished_ = false;    // the coder returned
+    std::optional<stepzip::Error> failure_;
+    std::string pending_;
+    std::size_t pending_pos_ = 0;
+    bool failed_ = false;  // sticky error, until reset()
+    enum stepzip_result failed_code_ = STEPZIP_OK;
+    std::string saved_error_;
+};
+
+bool valid_buffers(const stepzip_out_buffer* out, const stepzip_in_buffer* in,
+                   const size_t* remaining) noexcept {
+    return out && in && remaining && out->pos <= out->size && in->pos <= in->size &&
+           (out->dst || out->size == 0) && (in->src || in->size == 0);
+}
+
+}  // namespace
+
+struct stepzip_cstream {
+    explicit stepzip_cstream(stepzip::CompressOptions o)
+        : pump([o](const stepzip::ReadFn& r, const stepzip::WriteFn& w) {
+              return stepzip::compress_stream(r, w, o);
+          }) {}
+    Pump pump;
+};
+
+struct stepzip_dstream {
+    stepzip_dstream()
+        : pump([](const stepzip::ReadFn& r, const stepzip::WriteFn& w) {
+              return stepzip::decompress_stream(r, w);
+          }) {}
+    Pump pump;
+};
+
+namespace {
 }  // namespace
 
 extern "C" {
@@ -185,6 +381,25 @@ enum stepzip_result stepzip_compress(stepzip_compressor* c, enum stepzip_format 
 
 size_t stepzip_compress_bound(size_t in_nbytes) {
     return in_nbytes + in_nbytes / 128 + 4096;
+}
+
+enum stepzip_result stepzip_profile_from_name(const char* name, enum stepzip_profile* profile) {
+    if (!name || !profile) return STEPZIP_INVALID_ARGUMENT;
+    if (std::strcmp(name, "auto") == 0) {
+        *profile = STEPZIP_PROFILE_AUTO;
+        return STEPZIP_OK;
+    }
+    const auto p = stepzip::parse_profile(name);
+    if (!p) return STEPZIP_INVALID_ARGUMENT;
+    *profile = static_cast<enum stepzip_profile>(static_cast<int>(*p));
+    return STEPZIP_OK;
+}
+
+const char* stepzip_profile_name(enum stepzip_profile profile) {
+    if (profile == STEPZIP_PROFILE_AUTO) return "auto";
+    if (!known_profile(profile)) return "unknown";
+    // profile_name() views a string literal: its data is NUL-terminated.
+    return stepzip::profile_name(static_cast<stepzip::Profile>(profile)).data();
 }
 
 const char* stepzip_compressor_error(const stepzip_compressor* c) {
@@ -362,5 +577,71 @@ const char* stepzip_segmenter_error(const stepzip_segmenter* s) {
 }
 
 void stepzip_free_segmenter(stepzip_segmenter* s) { delete s; }
+
+// --------------------------------------------- streaming (de)compression
+
+stepzip_cstream* stepzip_alloc_cstream(const stepzip_compressor* settings,
+                                       enum stepzip_format format) {
+    if (!settings) return nullptr;
+    if (format != STEPZIP_FORMAT_AUTO && (format < STEPZIP_FORMAT_FREEMAN || format > STEPZIP_FORMAT_STEPS))
+        return nullptr;
+    try {
+        stepzip::CompressOptions o = settings->options;
+        if (format != STEPZIP_FORMAT_AUTO) o.format = static_cast<stepzip::InputFormat>(format);
+        return new stepzip_cstream(std::move(o));
+    } catch (...) {
+        return nullptr;
+    }
+}
+
+enum stepzip_result stepzip_compress_stream(stepzip_cstream* cs, stepzip_out_buffer* out,
+                                            stepzip_in_buffer* in, enum stepzip_end_directive end,
+                                            size_t* remaining) {
+    if (!cs) return STEPZIP_INVALID_ARGUMENT;
+    return guarded(&cs->pump.error, [&] {
+        if (!valid_buffers(out, in, remaining))
+            return fail(&cs->pump.error, STEPZIP_INVALID_ARGUMENT, "NULL or inconsistent buffer");
+        return cs->pump.step(out, in, end == STEPZIP_END, remaining);
+    });
+}
+
+void stepzip_cstream_reset(stepzip_cstream* cs) {
+    if (cs) cs->pump.reset();
+}
+
+const char* stepzip_cstream_error(const stepzip_cstream* cs) {
+    return cs ? cs->pump.error.c_str() : "";
+}
+
+void stepzip_free_cstream(stepzip_cstream* cs) { delete cs; }
+
+stepzip_dstream* stepzip_alloc_dstream(void) {
+    try {
+        return new stepzip_dstream;
+    } catch (...) {
+        return nullptr;
+    }
+}
+
+enum stepzip_result stepzip_decompress_stream(stepzip_dstream* ds, stepzip_out_buffer* out,
+                                              stepzip_in_buffer* in, enum stepzip_end_directive end,
+                                              size_t* remaining) {
+    if (!ds) return STEPZIP_INVALID_ARGUMENT;
+    return guarded(&ds->pump.error, [&] {
+        if (!valid_buffers(out, in, remaining))
+            return fail(&ds->pump.error, STEPZIP_INVALID_ARGUMENT, "NULL or inconsistent buffer");
+        return ds->pump.step(out, in, end == STEPZIP_END, remaining);
+    });
+}
+
+void stepzip_dstream_reset(stepzip_dstream* ds) {
+    if (ds) ds->pump.reset();
+}
+
+const char* stepzip_dstream_error(const stepzip_dstream* ds) {
+    return ds ? ds->pump.error.c_str() : "";
+}
+
+void stepzip_free_dstream(stepzip_dstream* ds) { delete ds; }
 
 }  // extern "C"

@@ -1,10 +1,12 @@
 // stepzip command line: shared input/output helpers (see cli_common.hpp).
 #include "cli_common.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -115,6 +117,77 @@ Result<std::string> read_input(const std::string& path) {
 }
 
 bool is_terminal(std::FILE* stream) noexcept { return ::isatty(::fileno(stream)) == 1; }
+
+std::optional<Error> console_stdin_refused(const std::vector<std::string>& inputs, bool force) {
+    if (force || !is_terminal(stdin)) return std::nullopt;
+    if (std::none_of(inputs.begin(), inputs.end(), [](const std::string& p) { return is_dash(p); }))
+        return std::nullopt;
+    return make_error(Errc::io, "stdin is a console, aborting (pipe or name an input, -f reads "
+                                "the terminal; 'stepzip --help' lists the commands)");
+}
+
+bool has_suffix(std::string_view path, std::string_view suffix) noexcept {
+    return path.size() > suffix.size() &&
+           path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+namespace {
+
+Result<void> walk_directory(const std::string& dir,
+                            const std::function<bool(const std::string&)>& wanted,
+                            std::vector<std::string>& out) {
+    DIR* d = ::opendir(dir.c_str());
+    if (!d) return io_error(dir, errno);
+    std::vector<std::string> names;
+    while (const dirent* e = ::readdir(d)) {
+        const std::string_view n = e->d_name;
+        if (n != "." && n != "..") names.emplace_back(n);
+    }
+    ::closedir(d);
+    std::sort(names.begin(), names.end());
+    for (const std::string& n : names) {
+        const std::string path = dir.back() == '/' ? dir + n : dir + "/" + n;
+        struct stat st {};
+        if (::lstat(path.c_str(), &st) != 0) return io_error(path, errno);
+        if (S_ISDIR(st.st_mode)) {
+            if (auto r = walk_directory(path, wanted, out); !r) return r;
+        } else if (S_ISREG(st.st_mode) && wanted(path)) {
+            out.push_back(path);
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<std::vector<std::string>> expand_directories(
+    const std::vector<std::string>& inputs, const std::function<bool(const std::string&)>& wanted) {
+    std::vector<std::string> out;
+    for (const std::string& in : inputs) {
+        struct stat st {};
+        if (!is_dash(in) && ::stat(in.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+            if (auto r = walk_directory(in, wanted, out); !r) return std::move(r).error();
+        } else {
+            out.push_back(in);
+        }
+    }
+    return out;
+}
+
+std::string format_size(std::uint64_t bytes) {
+    static constexpr const char* kUnits[] = {"KiB", "MiB", "GiB", "TiB"};
+    if (bytes < 1024) return std::to_string(bytes) + " B";
+    double v = static_cast<double>(bytes) / 1024;
+    int unit = 0;
+    while (v >= 1024 && unit < 3) {
+        v /= 1024;
+        ++unit;
+    }
+    char buf[32];
+    std::snprintf(buf, sizeof buf, v < 10 ? "%.2f %s" : v < 100 ? "%.1f %s" : "%.0f %s", v,
+                  kUnits[unit]);
+    return buf;
+}
 
 int report(const Error& error) {
     std::fprintf(stderr, "stepzip: %s\n", error.message.c_str());
@@ -250,6 +323,15 @@ Result<void> OutputFile::commit() {
         if (err != 0) return io_error(target_, err);
         return {};
     }
+    if (attributes_) {
+        // Owner first: chown clears the set-id bits that fchmod then restores.
+        // Only root may give a file away; like zstd, a refusal is not an error.
+        const int fd = ::fileno(file_);
+        [[maybe_unused]] const int owned = ::fchown(fd, attributes_->st_uid, attributes_->st_gid);
+        if (::fchmod(fd, attributes_->st_mode & 07777) != 0) return io_error(target_, errno);
+        const struct timespec times[2] = {attributes_->st_atim, attributes_->st_mtim};
+        if (::futimens(fd, times) != 0) return io_error(target_, errno);
+    }
     if (::fsync(::fileno(file_)) != 0) return io_error(target_, errno);
     if (std::fclose(file_) != 0) {
         const int err = errno;
@@ -270,23 +352,34 @@ Result<void> OutputFile::commit() {
 
 // ------------------------------------------------------------------ Progress
 
-Progress::Progress(std::string label, std::uint64_t total, bool enabled)
-    : label_(std::move(label)), total_(total), active_(enabled && is_terminal(stderr)) {}
+Progress::Progress(std::string label, std::uint64_t total, bool enabled, bool compressing)
+    : label_(std::move(label)),
+      total_(total),
+      active_(enabled && is_terminal(stderr)),
+      compressing_(compressing) {}
 
 Progress::~Progress() { finish(); }
 
-void Progress::update(std::uint64_t done) {
+void Progress::update(std::uint64_t read, std::uint64_t written) {
     if (!active_) return;
     const auto now = std::chrono::steady_clock::now();
     if (shown_ && now - last_ < std::chrono::milliseconds(250)) return;
     last_ = now;
     shown_ = true;
-    if (total_ > 0) {
-        const unsigned pct = static_cast<unsigned>(done >= total_ ? 100 : done * 100 / total_);
-        std::fprintf(stderr, "\r%s: %3u%%", label_.c_str(), pct);
-    } else {
-        std::fprintf(stderr, "\r%s: %llu", label_.c_str(), static_cast<unsigned long long>(done));
+    std::string line = "\r" + label_ + ": ";
+    if (total_ > 0)
+        line += std::to_string(read >= total_ ? 100 : read * 100 / total_) + "% ";
+    line += format_size(read) + " => " + format_size(written);
+    // The ratio is frame size / original size in both directions.
+    const std::uint64_t frame = compressing_ ? written : read;
+    const std::uint64_t original = compressing_ ? read : written;
+    if (original > 0) {
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, " (%.2f%%)", 100.0 * static_cast<double>(frame) / original);
+        line += ratio;
     }
+    line += "\033[K";
+    std::fputs(line.c_str(), stderr);
     std::fflush(stderr);
 }
 

@@ -6,11 +6,16 @@
 // calls them.
 #pragma once
 
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stepzip/error.hpp"
 
@@ -28,6 +33,24 @@ Result<std::string> read_input(const std::string& path);
 
 /// True when the stream is a terminal.
 bool is_terminal(std::FILE* stream) noexcept;
+
+/// The error for reading chains or frames typed at a keyboard, as zstd
+/// refuses them: when `inputs` name standard input and it is a terminal,
+/// unless `force`. Errc::io "stdin is a console, aborting (...)".
+std::optional<Error> console_stdin_refused(const std::vector<std::string>& inputs, bool force);
+
+/// The inputs with every directory replaced by the regular files under it
+/// (recursively, sorted by name) for which `wanted(path)` is true; files
+/// named directly are kept as they are. For -r. Errors: Errc::io naming the
+/// directory that cannot be read.
+Result<std::vector<std::string>> expand_directories(const std::vector<std::string>& inputs,
+                                                    const std::function<bool(const std::string&)>& wanted);
+
+/// True when `path` ends with `suffix` and has something before it.
+bool has_suffix(std::string_view path, std::string_view suffix) noexcept;
+
+/// A byte count as zstd prints it: "512 B", "1.50 KiB", "12.3 MiB".
+std::string format_size(std::uint64_t bytes);
 
 /// Prints "stepzip: <message>" on stderr; returns 1 (the error exit code).
 int report(const Error& error);
@@ -61,6 +84,12 @@ public:
     /// "PATH: already exists (use -f to overwrite)" or "PATH: <reason>".
     static Result<OutputFile> open(const std::string& path, bool force);
 
+    /// Gives the output, when commit() renames it into place, the mode, owner,
+    /// group and access/modification times of `source` (as zstd does): the
+    /// owner only where the system allows it, the rest always. No effect on
+    /// standard output or a device written in place.
+    void keep_attributes_of(const struct stat& source) { attributes_ = source; }
+
     /// Appends bytes. Errors: Errc::io naming the target.
     Result<void> write(std::string_view data);
     /// Finishes the output: flush, fsync and rename for a file; flush for
@@ -82,20 +111,24 @@ private:
     bool to_stdout_ = false;
     bool direct_ = false;   ///< an existing non-regular target, written in place
     bool done_ = false;
+    std::optional<struct stat> attributes_;
 };
 
-/// A progress line on stderr ("label: 42%"), shown only when enabled and
-/// stderr is a terminal, updated at most a few times a second, erased by
-/// finish() or the destructor.
+/// A progress line on stderr, as zstd's: "label: 42% 1.20 MiB => 310 KiB
+/// (25.23%)" (the percentage only when the input size is known), shown only
+/// when enabled and stderr is a terminal, updated at most a few times a
+/// second, erased by finish() or the destructor.
 class Progress {
 public:
-    Progress(std::string label, std::uint64_t total, bool enabled = true);
+    /// `compressing`: the output is the frame (else the input is), for the
+    /// ratio frame / original.
+    Progress(std::string label, std::uint64_t total, bool enabled, bool compressing);
     ~Progress();
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
 
-    /// Reports that `done` of `total` units are finished.
-    void update(std::uint64_t done);
+    /// Reports `read` of `total` input bytes consumed and `written` output bytes.
+    void update(std::uint64_t read, std::uint64_t written);
     /// Erases the line (idempotent).
     void finish();
 
@@ -103,6 +136,7 @@ private:
     std::string label_;
     std::uint64_t total_;
     bool active_;
+    bool compressing_;
     bool shown_ = false;
     std::chrono::steady_clock::time_point last_{};
 };

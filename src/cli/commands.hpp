@@ -23,6 +23,8 @@ const std::vector<Command>& commands();
 int cmd_compress(const std::vector<std::string>& args);     // compress_cmd.cpp
 int cmd_decompress(const std::vector<std::string>& args);   // decompress_cmd.cpp
 int cmd_verify(const std::vector<std::string>& args);       // verify_cmd.cpp
+/// zstd's -t: tests every file named (verify's second operand is ORIGINAL).
+int cmd_test(const std::vector<std::string>& args);         // verify_cmd.cpp
 int cmd_info(const std::vector<std::string>& args);         // info_cmd.cpp
 int cmd_interpolate(const std::vector<std::string>& args);  // interpolate_cmd.cpp
 int cmd_segment(const std::vector<std::string>& args);      // segment_cmd.cpp

@@ -10,65 +10,34 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "stepzip/container.hpp"
+#include "file_driver.hpp"
 #include "stz_stream.hpp"
 
 namespace po = boost::program_options;
 
 namespace stepzip::cli {
 
-namespace {
-
-struct DecompressArgs {
-    std::vector<std::string> inputs;
-    std::string output;
-    bool to_stdout = false, force = false, remove = false, quiet = false, progress = true;
-};
-
-int decompress_one(const std::string& input, const DecompressArgs& a) {
-    std::string target;
-    if (!a.output.empty()) {
-        target = a.output;
-    } else if (a.to_stdout || is_dash(input)) {
-        target = "-";
-    } else {
-        constexpr std::string_view suffix = ".stz";
-        if (input.size() <= suffix.size() || input.compare(input.size() - suffix.size(), suffix.size(), suffix) != 0)
-            return report(make_error(Errc::invalid_argument,
-                                     input + ": unknown suffix, expected .stz (use -o OUT or -c)"));
-        target = input.substr(0, input.size() - suffix.size());
-    }
-    InputStream in;
-    if (auto r = in.open(input); !r) return report(r.error());
-    auto out = OutputFile::open(target, a.force);
-    if (!out) return report(out.error());
-    Progress progress("decompress " + in.name(), in.size(), a.progress && !a.quiet);
-    WriteFn sink = [&](std::string_view b) { return out->write(b); };
-    auto info = decompress_stream(in.reader(), sink, in.name(),
-                                  [&](std::uint64_t done) { progress.update(done); });
-    progress.finish();
-    if (!info) return report(info.error());
-    if (auto r = out->commit(); !r) return report(r.error());
-    if (a.remove && !is_dash(input) && ::unlink(input.c_str()) != 0)
-        return report(make_error(Errc::io, input + ": cannot remove: " + std::strerror(errno)));
-    return 0;
-}
-
-}  // namespace
-
 int cmd_decompress(const std::vector<std::string>& args) {
-    DecompressArgs a;
+    FileJobOptions a;
+    a.command = "decompress";
+    unsigned threads = 1;
     po::options_description desc(
-        "Usage: stepzip decompress [INPUT.stz... | -] [-o OUT] [-c] [-f] [-k|--rm]\n"
-        "Restores the original bytes and checks their XXH64. FILE.stz -> FILE;\n"
-        "no INPUT or '-' = stdin -> stdout.\nOptions");
+        "Usage: stepzip decompress [INPUT.stz... | -] [-o OUT] [-c] [-f] [-k|--rm] [-r] [-q|-v]\n"
+        "       stepzip -d ...      (zstd's form; -dc = -d -c)\n"
+        "Restores the original bytes and checks their XXH64. FILE.stz -> FILE (mode, owner\n"
+        "and times kept); no INPUT or '-' = stdin -> stdout. Frames written one after\n"
+        "another (cat a.stz b.stz, compress -c a b) decode one after another.\nOptions");
     desc.add_options()
         ("help,h", "show this help")
-        ("output,o", po::value(&a.output), "write to OUT (one input only)")
-        ("stdout,c", po::bool_switch(&a.to_stdout), "write to standard output")
-        ("force,f", po::bool_switch(&a.force), "overwrite existing outputs")
+        ("output,o", po::value(&a.output), "write to OUT (several inputs: with -f, one after another)")
+        ("stdout,c", po::bool_switch(&a.to_stdout), "write to standard output (the input is kept)")
+        ("force,f", po::bool_switch(&a.force), "overwrite existing outputs; allow a terminal as input")
         ("keep,k", "keep the input (default)")
-        ("rm", po::bool_switch(&a.remove), "remove the input after success")
+        ("rm", po::bool_switch(&a.remove), "remove the input after success (never with -c)")
+        ("recursive,r", po::bool_switch(&a.recursive), "decompress the *.stz files under directories")
+        ("threads,T", po::value(&threads), "accepted as zstd accepts it; decoding uses one thread")
         ("quiet,q", po::bool_switch(&a.quiet), "no messages but errors")
+        ("verbose,v", po::bool_switch(&a.verbose), "print a summary line per input")
         ("progress", "show progress on a terminal (default)")
         ("no-progress", "never show progress");
     po::variables_map vm;
@@ -76,14 +45,21 @@ int cmd_decompress(const std::vector<std::string>& args) {
         return *exit_code;
     if (vm.count("no-progress")) a.progress = false;
     if (vm.count("keep") && a.remove) return usage_error("decompress: -k and --rm conflict");
-    if (a.inputs.empty()) a.inputs.push_back("-");
-    if (!a.output.empty() && a.inputs.size() > 1)
-        return usage_error("decompress: -o takes a single input");
-    if (!a.output.empty() && a.to_stdout) return usage_error("decompress: -o and -c conflict");
-    int status = 0;
-    for (const std::string& in : a.inputs)
-        if (decompress_one(in, a) != 0) status = 1;
-    return status;
+    if (a.quiet && a.verbose) return usage_error("decompress: -q and -v conflict");
+    const TargetFn target = [](const std::string& input) -> Result<std::string> {
+        if (!has_suffix(input, ".stz"))
+            return make_error(Errc::invalid_argument,
+                              input + ": unknown suffix, expected .stz (use -o OUT or -c)");
+        return input.substr(0, input.size() - 4);
+    };
+    const WantedFn wanted = [](const std::string& path) { return has_suffix(path, ".stz"); };
+    const TransformFn transform = [](InputStream& in, const ReadFn& read, const WriteFn& write,
+                                     const ProgressFn& tick) -> Result<std::string> {
+        auto info = decompress_stream(read, write, in.name(), tick);
+        if (!info) return std::move(info).error();
+        return std::string("profile ") + std::string(profile_name(info->profile));
+    };
+    return run_file_jobs(a, target, wanted, transform);
 }
 
 }  // namespace stepzip::cli

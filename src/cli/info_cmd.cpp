@@ -25,6 +25,7 @@ int cmd_info(const std::vector<std::string>& args) {
     if (auto exit_code = parse_command("info", args, desc, "file", po::value(&files), -1, vm))
         return *exit_code;
     if (files.empty()) files.push_back("-");
+    if (auto refused = console_stdin_refused(files, false)) return report(*refused);
     int status = 0;
     for (const std::string& f : files) {
         InputStream in;

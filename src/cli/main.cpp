@@ -4,7 +4,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "options.hpp"
 #include "stepzip/version.hpp"
 
 namespace stepzip::cli {
@@ -13,7 +17,7 @@ const std::vector<Command>& commands() {
     static const std::vector<Command> table = {
         {"compress", "-z", cmd_compress, "chain files -> .stz (lossless, verified)"},
         {"decompress", "-d", cmd_decompress, ".stz -> the original chain files"},
-        {"verify", "-t", cmd_verify, "exit 0 only if the round trip is exact"},
+        {"verify", nullptr, cmd_verify, "INPUT.stz [ORIGINAL]: exit 0 only if the round trip is exact"},
         {"info", "-l", cmd_info, "profile, chains, steps, segments, bits/step"},
         {"interpolate", nullptr, cmd_interpolate, "vectors (G-code, HP-GL) -> steps (forward)"},
         {"segment", nullptr, cmd_segment, "steps -> vectors (G-code, HP-GL, SVG, JSON)"},
@@ -26,13 +30,38 @@ namespace {
 void print_usage(std::FILE* out) {
     std::fprintf(out,
                  "Usage: stepzip COMMAND [OPTIONS] [INPUT... | -]\n"
+                 "       stepzip [-z|-d|-t|-l] [OPTIONS] [INPUT... | -]   (as zstd: no mode compresses)\n"
                  "Lossless compression of unit-step chains by reverse interpolation.\n\n"
                  "Commands:\n");
     for (const Command& c : commands()) {
         const std::string name = c.alias ? std::string(c.name) + ", " + c.alias : c.name;
         std::fprintf(out, "  %-16s %s\n", name.c_str(), c.summary);
     }
-    std::fprintf(out, "\n'stepzip COMMAND --help' describes a command's options.\n");
+    std::fprintf(out,
+                 "\n-t tests every file named, as zstd's does ('stepzip -t a.stz b.stz');\n"
+                 "'stepzip verify X.stz Y' compares X.stz's content with the original Y.\n"
+                 "Short options bundle as in zstd (-zc, -dc, -19 = -L 19, -T4); of -c and -o\n"
+                 "the last one given wins. 'stepzip COMMAND --help' describes a command's options.\n");
+}
+
+// The commands whose options follow zstd's command line.
+bool zstd_like(std::string_view name) {
+    return name == "compress" || name == "decompress" || name == "verify" || name == "info";
+}
+
+int run(const std::string& name, std::vector<std::string> rest) {
+    if (name == "test") {  // zstd's -t: every file named is tested (see cmd_test)
+        rest.insert(rest.begin(), "-t");
+        return cmd_test(rest);
+    }
+    for (const Command& c : commands())
+        if (name == c.name) {
+            std::vector<std::string> args{name};
+            args.insert(args.end(), rest.begin(), rest.end());
+            return c.run(args);
+        }
+    std::fprintf(stderr, "stepzip: unknown command '%s' (try 'stepzip --help')\n", name.c_str());
+    return 2;
 }
 
 }  // namespace
@@ -40,10 +69,7 @@ void print_usage(std::FILE* out) {
 
 int main(int argc, char** argv) {
     using namespace stepzip::cli;
-    if (argc < 2) {
-        print_usage(stderr);
-        return 2;
-    }
+    if (argc < 2) return run("compress", {});  // as zstd: stdin -> stdout, a console refused
     const std::string first = argv[1];
     if (first == "-h" || first == "--help") {
         print_usage(stdout);
@@ -53,13 +79,20 @@ int main(int argc, char** argv) {
         std::printf("stepzip %s\n", stepzip::version_string());
         return 0;
     }
-    for (const Command& c : commands()) {
-        if (first == c.name || (c.alias && first == c.alias)) {
-            std::vector<std::string> args(argv + 1, argv + argc);
-            args[0] = c.name;
-            return c.run(args);
-        }
+    std::vector<std::string> rest(argv + 2, argv + argc);
+    for (const Command& c : commands())
+        if (first == c.name) return run(c.name, zstd_like(c.name) ? split_zstd_options(rest) : rest);
+    // zstd's form: a mode option anywhere (-z, -d, -t, -l) or none, which
+    // compresses. A first word that is neither a command nor a file nor an
+    // option is most likely a mistyped command.
+    struct stat st {};
+    if (first[0] != '-' && first.find_first_of("./") == std::string::npos &&
+        ::stat(first.c_str(), &st) != 0) {
+        std::fprintf(stderr, "stepzip: '%s' is neither a command nor a file (try 'stepzip --help')\n",
+                     first.c_str());
+        return 2;
     }
-    std::fprintf(stderr, "stepzip: unknown command '%s' (try 'stepzip --help')\n", first.c_str());
-    return 2;
+    std::vector<std::string> args = split_zstd_options(std::vector<std::string>(argv + 1, argv + argc));
+    const std::string mode = take_zstd_mode(args);
+    return run(mode, args);
 }

@@ -22,4 +22,20 @@ std::optional<int> parse_command(std::string_view command, const std::vector<std
                                  const boost::program_options::value_semantic* positional,
                                  int max_positional, boost::program_options::variables_map& vm);
 
+/// zstd's way of writing options, rewritten for Boost.Program_options, for the
+/// commands that share zstd's command line (compress, decompress, verify,
+/// info): bundled short options are split ("-zc" -> "-z" "-c", "-T4" ->
+/// "-T" "4"), a level "-#" becomes "-L" "#" ("-19", "-c19"), and of "-c" and
+/// "-o FILE" only the last one given is kept, as zstd lets the last win.
+/// Everything after "--" is passed on unchanged.
+std::vector<std::string> split_zstd_options(const std::vector<std::string>& args);
+
+/// The command named by a zstd mode option in `args` (already split):
+/// "-z"/"--compress" -> "compress", "-d"/"--decompress"/"--uncompress" ->
+/// "decompress", "-t"/"--test" -> "test" (verify's check of every file
+/// named, see cmd_test), "-l"/"--list" -> "info"; the last one wins,
+/// "compress" when there is none. The mode options are
+/// removed from `args`.
+std::string take_zstd_mode(std::vector<std::string>& args);
+
 }  // namespace stepzip::cli

@@ -9,6 +9,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "cli_common.hpp"
@@ -34,7 +35,10 @@ public:
         struct stat st {};
         if (::fstat(fd_, &st) == 0) {
             if (S_ISDIR(st.st_mode)) return make_error(Errc::io, name_ + ": is a directory");
-            if (S_ISREG(st.st_mode)) size_ = static_cast<std::uint64_t>(st.st_size);
+            if (S_ISREG(st.st_mode)) {
+                size_ = static_cast<std::uint64_t>(st.st_size);
+                if (!is_dash(path)) stat_ = st;
+            }
         }
         return {};
     }
@@ -62,11 +66,15 @@ public:
     const std::string& name() const noexcept { return name_; }
     /// Size of a regular file, 0 when unknown.
     std::uint64_t size() const noexcept { return size_; }
+    /// The status of a named regular file (mode, owner, times); nullopt for
+    /// standard input and anything else.
+    const std::optional<struct stat>& file_status() const noexcept { return stat_; }
 
 private:
     int fd_ = -1;
     std::string name_;
     std::uint64_t size_ = 0;
+    std::optional<struct stat> stat_;
 };
 
 }  // namespace stepzip::cli

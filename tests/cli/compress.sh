@@ -78,7 +78,7 @@ check "--rm" "$Z" compress --rm r.fc
 
 # verify and info
 check "verify" "$Z" verify a.fc.stz
-check "verify against the original" "$Z" -t a.fc.stz a.fc
+check "verify against the original" "$Z" verify a.fc.stz a.fc
 refuse "verify against another file" "$Z" verify a.fc.stz b.fc
 grep -q 'differ' err.log || fail "verify mismatch message"
 check "info" "$Z" info named.bin
