@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -150,9 +151,10 @@ Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
 struct GcodeWriteOptions {
     bool relative = false;              ///< G91 with incremental X Y (default: G90 absolute)
     std::optional<StepSize> step_size;  ///< write millimetres (exact decimals) instead of steps
+    std::string comment;                ///< one more header comment line (none when empty)
 };
 
-/// G-code text: a header comment, G90 (or G91) and G21 when a step size is
+/// G-code text: a header comment (and `comment`, if any, on its own line), G90 (or G91) and G21 when a step size is
 /// given, then per path a G0 to its start and one G1 / G2 / G3 per move with
 /// integer (or exact decimal) X Y words; arcs carry I J relative to their
 /// start. A move with a feed gets an F word (G94, units per minute, three
@@ -184,12 +186,14 @@ struct DrawingInterpolation {
 Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
                                                const DrawingInterpolation& options = {});
 
-/// HP-GL text: "IN;SP1;" then per path "PU x0,y0;PD x1,y1,...;" and
-/// "PU;SP0;" at the end; coordinates are steps (absolute).
+/// HP-GL text: "IN;" and, when `comment` is not empty, CO"comment"; (double
+/// quotes in it become single ones), "SP1;", then per path
+/// "PU x0,y0;PD x1,y1,...;" and "PU;SP0;" at the end; coordinates are steps
+/// (absolute).
 /// Errors: Errc::unsupported when the drawing holds an arc (HP-GL's arcs are
 /// given by angle, which integer end points cannot carry exactly).
 /// Thread-safe.
-Result<std::string> write_hpgl(const Drawing& drawing);
+Result<std::string> write_hpgl(const Drawing& drawing, std::string_view comment = {});
 
 /// A chain together with the segments reverse interpolation found for it.
 struct SegmentedChain {
@@ -232,6 +236,33 @@ struct FeedOptions {
 Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains,
                                     const FeedOptions& feed);
 
+/// Longest segment segment_default_phase() considers, in ticks.
+inline constexpr std::int64_t kLongestVectorSegment = 4096;
+
+/// The cut that vectors can carry. A vector (a G1, a PD pair, an SVG line)
+/// has end points only, no phase, and `stepzip interpolate` draws it at the
+/// profile's default phase; so this cut uses only default-phase segments:
+/// at each point, of the exact segments starting there (at most
+/// kLongestVectorSegment ticks), the longest that the default phase draws.
+/// One step is always such a segment, so the cut always exists; for steps
+/// the profile drew itself from a polyline it usually finds the polyline's
+/// vertices (or fewer, merged). Appends to `out` segments whose expansion in
+/// order is exactly `steps`, each equal to default_segment(p, delta, axes).
+/// Errors: as profile_accepts(). Thread-safe.
+/// Complexity: O(n) recognizer work plus O(length) per candidate checked;
+/// O(kLongestVectorSegment^2) per segment in the worst case.
+Result<void> segment_default_phase(std::span<const Step> steps, int axes, Profile p,
+                                   std::vector<Segment>& out);
+
+/// Redraws `drawing` with interpolate_drawing() under `profile` (lines at
+/// the default phase) and compares the chains with `chains`, skipping those
+/// without steps: the proof that vectors written for `chains` give them
+/// back. Errors: Errc::mismatch naming the first (1-based) chain that
+/// differs and the first step where it does; errors of interpolate_drawing().
+/// Thread-safe. Complexity: O(steps).
+Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
+                          Profile profile);
+
 /// How a segment looks, for colouring: an axis-parallel run, a 45° diagonal,
 /// or a general slope.
 enum class SegmentShape : std::uint8_t { run, diagonal, slope };
@@ -252,6 +283,15 @@ struct CutInfo {
 /// chains only. Errors: Errc::unsupported for another axis count.
 /// Thread-safe. The exact markup may change between versions.
 Result<std::string> write_svg(const std::vector<SegmentedChain>& chains, const CutInfo& info);
+
+/// Plain SVG for plotter programs (vpype, Inkscape, AxiDraw): one
+/// <path d="M x0 y0 L x1 y1 ..."/> per drawing path, black stroke, no fill,
+/// in one group <g transform="scale(1,-1)"> so that the coordinates are the
+/// steps as they are (integers, user units) and y grows upwards on the page;
+/// the viewBox is the drawing's bounding box with a margin of 2 units, and
+/// `comment` (if not empty) an XML comment after the root element ("--"
+/// becomes "- -"). Errors: Errc::unsupported for an arc. Thread-safe.
+Result<std::string> write_svg_paths(const Drawing& drawing, std::string_view comment = {});
 
 /// JSON: {"profile", "segmenter", "exact", "stats" (patent mode), "chains":
 /// [{"start": [..], "steps": N, "segments": [{"delta": [..], "phase": [..]}]}]}

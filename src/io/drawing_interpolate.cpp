@@ -1,5 +1,6 @@
 // stepzip — forward interpolation of a vector drawing (what `stepzip
 // interpolate` does): one chain per pen-down path.
+#include <algorithm>
 #include <string>
 
 #include "stepzip/vectors.hpp"
@@ -63,6 +64,35 @@ Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
         if (!chain.steps.empty()) chains.push_back(std::move(chain));
     }
     return chains;
+}
+
+Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
+                          Profile profile) {
+    DrawingInterpolation how;
+    how.profile = profile;
+    how.source = "redrawn vectors";
+    auto redrawn = interpolate_drawing(drawing, how);
+    if (!redrawn) return std::move(redrawn).error();
+    std::size_t r = 0;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const Chain& want = chains[c];
+        if (want.steps.empty()) continue;
+        const std::string which = "chain " + std::to_string(c + 1) + ": profile " +
+                                  std::string(profile_name(profile)) + " redraws the vectors ";
+        if (r == redrawn->size()) return make_error(Errc::mismatch, which + "into no chain");
+        const Chain& got = (*redrawn)[r++];
+        if (got.start != want.start)
+            return make_error(Errc::mismatch, which + "from another start");
+        const auto diff = std::mismatch(got.steps.begin(), got.steps.end(), want.steps.begin(),
+                                        want.steps.end());
+        if (diff.first != got.steps.end() || diff.second != want.steps.end())
+            return make_error(Errc::mismatch,
+                              which + "differently from step " +
+                                  std::to_string(diff.second - want.steps.begin() + 1));
+    }
+    if (r != redrawn->size())
+        return make_error(Errc::mismatch, "the vectors redraw into more chains than the input has");
+    return {};
 }
 
 }  // namespace stepzip

@@ -3,6 +3,7 @@
 // Reader: one pass over the lines; each line is split into words (a letter
 // and an exact decimal), then applied in the order a controller would:
 // units and distance mode first, then the motion. Complexity: O(bytes).
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstdio>
@@ -285,6 +286,11 @@ std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options
     out += options.step_size ? "mm" : "steps";
     if (feeds) out += options.step_size ? ", feed in mm/min" : ", feed in steps/min";
     out += "\n";
+    if (!options.comment.empty()) {
+        std::string c = options.comment;
+        std::replace(c.begin(), c.end(), '\n', ' ');
+        out += "; " + c + "\n";
+    }
     out += options.relative ? "G91\n" : "G90\n";
     if (options.step_size) out += "G21\n";
     if (feeds) out += "G94\n";

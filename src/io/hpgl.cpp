@@ -2,6 +2,7 @@
 //
 // Reader: one pass; an instruction is a two-letter mnemonic and a list of
 // exact decimal parameters. Complexity: O(bytes).
+#include <algorithm>
 #include <cctype>
 #include <string>
 #include <vector>
@@ -100,6 +101,18 @@ Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& option
             if (cur.done())
                 return make_error(Errc::syntax, at + ": label (LB) not ended by ETX (0x03)");
             cur.advance();
+            continue;
+        }
+        if (mnemonic == "CO") {
+            // A comment (HP-GL/2): CO "text"; skipped.
+            while (!cur.done() && is_space(cur.peek())) cur.advance();
+            if (!cur.done() && cur.peek() == '"') {
+                cur.advance();
+                while (!cur.done() && cur.peek() != '"') cur.advance();
+                if (cur.done())
+                    return make_error(Errc::syntax, at + ": comment (CO) not ended by '\"'");
+                cur.advance();
+            }
             continue;
         }
 
@@ -201,8 +214,14 @@ Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& option
     return drawing;
 }
 
-Result<std::string> write_hpgl(const Drawing& drawing) {
-    std::string out = "IN;SP1;\n";
+Result<std::string> write_hpgl(const Drawing& drawing, std::string_view comment) {
+    std::string out = "IN;";
+    if (!comment.empty()) {
+        std::string c(comment);
+        std::replace(c.begin(), c.end(), '"', '\'');
+        out += "CO\"" + c + "\";";
+    }
+    out += "SP1;\n";
     for (std::size_t p = 0; p < drawing.size(); ++p) {
         const VectorPath& path = drawing[p];
         out += "PU" + std::to_string(path.x0) + "," + std::to_string(path.y0) + ";\n";
