@@ -125,6 +125,103 @@ struct VectorReadOptions {
 /// interpolator does that).
 Result<Drawing> read_gcode(std::string_view text, const VectorReadOptions& options = {});
 
+/// G-code of slicers and CAM, read as a machine job on up to six named axes
+/// (`stepzip interpolate --axes`).
+struct MachineReadOptions {
+    std::string source = "<input>";  ///< names the input in error messages
+    /// The job's axes in output order: distinct letters among X Y Z A B C E,
+    /// two to six of them (case-insensitive).
+    std::string axes = "XY";
+    /// Steps per millimetre (per degree for A B C) as exact decimals: none
+    /// (values are whole steps), one for every axis, or one per axis in the
+    /// order of `axes` (GRBL $100-$103, Marlin M92).
+    std::vector<std::string> steps_per_mm;
+};
+
+/// One planned move of a machine job. Coordinates are steps, in the order of
+/// the job's axes.
+struct MachineMove {
+    bool rapid = false;              ///< G0 (the pen is up; stepped all the same)
+    MoveKind kind = MoveKind::line;  ///< arcs turn in the X Y plane; other axes move linearly
+    Point to{};                      ///< end point
+    std::int64_t cx = 0, cy = 0;     ///< arc centre on the X and Y axes (arcs only)
+    double feed = 0;                 ///< the F word in force, units per minute as written; 0: none yet
+    std::uint32_t line = 0, column = 0;  ///< where the move was read
+};
+
+/// A stretch of moves the machine steps without a break: the job starts at
+/// the origin; a G28 that changes the position starts a new run.
+struct MachineRun {
+    Point start{};
+    std::vector<MachineMove> moves;
+};
+
+struct MachineJob {
+    int axes = 2;
+    std::string letters;  ///< the axes, upper case
+    std::vector<MachineRun> runs;
+    std::size_t skipped_words = 0;  ///< words read and skipped (M-codes, S, T, unknown words)
+};
+
+/// Reads G-code as a machine job. Accepted (case-insensitive):
+///  - G0 / G1 / G2 / G3 (modal), every move stepped, travel included;
+///    G2 / G3 turn in the X Y plane with I J centre offsets (G91.1, default)
+///    or absolute centres (G90.1) while the other axes move linearly (a
+///    helix); the axes X and Y must then be among the job's axes;
+///  - G90 / G91 absolute / relative; M82 / M83 absolute / relative E (once
+///    given they override G90 / G91 for E, as in Marlin); G20 / G21 inches /
+///    millimetres (X Y Z E; A B C are degrees);
+///  - G92 sets the position of the named axes (all axes, to 0, without any)
+///    without stepping; G28 homes the named axes (all without any): no move
+///    is planned, the machine is taken to be at 0 on those axes afterwards
+///    (their G92 offsets cleared), and a new run starts there if that moved
+///    it;
+///  - F (feed, kept in the moves), N (line numbers), G17, G94, G4 (dwell),
+///    G80 (cancel canned cycle);
+///  - skipped and counted in skipped_words: every M-code other than M82 /
+///    M83, S, T, other G-codes that do not move (G29, G21.1, ...), axis
+///    words of axes that are not in the job, any other letter.
+/// Errors (SOURCE:LINE:COLUMN): Errc::unsupported for motion words that are
+/// not G0-G3 (G5, G33, G38.x, G73, G76, G81-G89 ...), an arc given by R, an
+/// arc outside the X Y plane (G18 / G19) or without X and Y axes;
+/// Errc::syntax and Errc::limit as read_gcode(). Coordinates round per axis
+/// to the nearest step, halves away from zero (exact decimals, no drift).
+/// Thread-safe. Complexity: O(bytes).
+Result<MachineJob> read_gcode_job(std::string_view text, const MachineReadOptions& options);
+
+/// How a machine job is stepped.
+struct JobStepping {
+    Profile profile = Profile::grbl;       ///< lines at this profile's default phase
+    std::optional<ArcMethod> arc_method;   ///< as DrawingInterpolation
+    std::size_t max_steps = std::size_t{1} << 28;
+    std::string source = "<input>";
+};
+
+/// The STEP/DIR signals of a job: one chain per run, and per tick the DIR
+/// levels (bit 2i+1 for axis i) the controller holds on its direction lines.
+/// Lines: the profile's leading-axis method, one tick per step of the
+/// leading axis, every DIR bit of an axis whose move is negative set for the
+/// whole move (also on ticks where that axis rests). Arcs: X and Y by the arc
+/// method; the other axes spread over the arc's ticks by the profile's line
+/// rule; a DIR line of X or Y follows its steps (before its first step in
+/// the arc: the direction of that step). A move of zero steps is no tick.
+struct SteppedJob {
+    std::vector<Chain> chains;                  ///< one per run with steps
+    std::vector<std::vector<std::uint16_t>> dir;  ///< per chain, per tick
+};
+
+/// Steps a machine job. Errors (SOURCE:LINE:COLUMN of the move):
+/// Errc::invalid_argument when the profile does not take the job's axis
+/// count (eval4 and patent take X Y only); Errc::unsupported for a helix
+/// whose linear axis moves more steps than the arc has ticks; the errors of
+/// interpolate_drawing(). Thread-safe. Complexity: O(steps · axes).
+Result<SteppedJob> step_job(const MachineJob& job, const JobStepping& how);
+
+/// The bytes of a STEP/DIR log (the `steps` chain format, docs/formats.md):
+/// per tick, bit 2i = axis i steps, bit 2i+1 = its DIR level; the runs back
+/// to back. Errors: Errc::unsupported for more than 4 axes. Thread-safe.
+Result<std::string> step_dir_bytes(const SteppedJob& job);
+
 /// Reads HP-GL. Accepted: PU / PD (pen up / down, optional coordinate pairs
 /// moved to with that pen), PA / PR (absolute / relative mode, optional
 /// coordinate pairs moved to with the current pen); IN (initialize: pen up,

@@ -68,23 +68,48 @@ std::string format_e12(i128 value_e12) {
     return out;
 }
 
-Result<std::int64_t> to_steps(i128 pos_e15, const std::optional<StepSize>& step,
-                              const std::string& where, std::string_view text) {
-    const i128 unit = step ? i128{step->mm_e12} * 1000 : pow10(15);
-    i128 q = pos_e15 / unit;
-    const i128 r = pos_e15 % unit;
+AxisScale AxisScale::of(const std::optional<StepSize>& step) noexcept {
+    AxisScale s;
+    if (step) {
+        s.den = i128{step->mm_e12} * 1000;
+        s.rounds = true;
+    }
+    return s;
+}
+
+AxisScale AxisScale::per_mm(i128 steps_per_mm_e12) noexcept {
+    AxisScale s;
+    s.num = steps_per_mm_e12;
+    s.den = pow10(27);
+    s.rounds = true;
+    return s;
+}
+
+Result<std::int64_t> to_steps(i128 pos_e15, const AxisScale& scale, const std::string& where,
+                              std::string_view text) {
+    i128 scaled = 0;
+    if (__builtin_mul_overflow(pos_e15, scale.num, &scaled))
+        return make_error(Errc::limit, where + ": coordinate " + std::string(text) +
+                                           " is beyond the limit of 2^30 steps");
+    i128 q = scaled / scale.den;
+    const i128 r = scaled % scale.den;
     if (r != 0) {
-        if (!step)
+        if (!scale.rounds)
             return make_error(Errc::syntax, where + ": coordinate " + std::string(text) +
                                                 " is not a whole number of steps (set a step "
                                                 "size to read millimetres)");
         const i128 twice = (r < 0 ? -r : r) * 2;
-        if (twice >= unit) q += pos_e15 < 0 ? -1 : 1;  // halves away from zero
+        if (twice >= scale.den) q += scaled < 0 ? -1 : 1;  // halves away from zero
     }
     if (q > kMaxVectorCoord || q < -kMaxVectorCoord)
         return make_error(Errc::limit, where + ": coordinate " + std::string(text) +
                                            " is beyond the limit of 2^30 steps");
     return static_cast<std::int64_t>(q);
+}
+
+Result<std::int64_t> to_steps(i128 pos_e15, const std::optional<StepSize>& step,
+                              const std::string& where, std::string_view text) {
+    return to_steps(pos_e15, AxisScale::of(step), where, text);
 }
 
 std::string place(const std::string& source, std::size_t line, std::size_t column) {
