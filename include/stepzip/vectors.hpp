@@ -57,6 +57,7 @@ struct VectorMove {
 struct VectorPath {
     std::int64_t x0 = 0, y0 = 0;
     std::vector<VectorMove> moves;
+    int pen = 1;  ///< HP-GL pen (SP); 1 for G-code
     friend bool operator==(const VectorPath&, const VectorPath&) = default;
 };
 
@@ -82,8 +83,9 @@ std::string_view vector_format_name(VectorFormat f) noexcept;
 std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
 
 /// Guesses G-code or HP-GL from the first bytes of a file: HP-GL when the
-/// first instruction is a two-letter HP-GL mnemonic (IN, PU, PD, PA, PR, SP,
-/// DF) followed by a parameter, ';' or another mnemonic; G-code when the
+/// text starts with ESC (a device-control or PCL escape) or with two
+/// letters (a mnemonic; no G-code word has two) followed by a parameter, a
+/// separator or another mnemonic; G-code when the
 /// first word is a letter and a number (G0, N10, M3 ...) or the text starts
 /// with a comment or '%'. nullopt when neither fits. Thread-safe.
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept;
@@ -103,7 +105,9 @@ struct VectorReadOptions {
 ///  - G90 / G91 absolute / relative X Y; G20 / G21 inches / millimetres
 ///    (matter only with a step size; default millimetres); G17 (XY plane),
 ///    G94 (feed per minute), G4 P.. (dwell) accepted and ignored;
-///  - F (feed), S (spindle/laser power), T (tool), M (machine functions: M3 /
+///  - T n (a whole number): the pen of the paths that follow (VectorPath::pen;
+///    a new path starts where it changes);
+///  - F (feed), S (spindle/laser power), M (machine functions: M3 /
 ///    M5 pen or spindle control, M2 / M30 end ...) and N (line numbers) are
 ///    accepted and ignored: only G0 moves break paths;
 ///  - comments "; ..." to the end of the line and "( ... )", blank lines,
@@ -146,6 +150,7 @@ struct MachineMove {
     Point to{};                      ///< end point
     std::int64_t cx = 0, cy = 0;     ///< arc centre on the X and Y axes (arcs only)
     double feed = 0;                 ///< the F word in force, units per minute as written; 0: none yet
+    int pen = 1;                     ///< read_gcode(): the T word in force (the pen)
     std::uint32_t line = 0, column = 0;  ///< where the move was read
 };
 
@@ -222,22 +227,26 @@ Result<SteppedJob> step_job(const MachineJob& job, const JobStepping& how);
 /// to back. Errors: Errc::unsupported for more than 4 axes. Thread-safe.
 Result<std::string> step_dir_bytes(const SteppedJob& job);
 
-/// Reads HP-GL. Accepted: PU / PD (pen up / down, optional coordinate pairs
-/// moved to with that pen), PA / PR (absolute / relative mode, optional
-/// coordinate pairs moved to with the current pen); IN (initialize: pen up,
-/// absolute, at (0, 0)), DF, SP, VS, LT, PW, PG, and SC / IP without
-/// parameters, all accepted and ignored; instructions separated by ';',
-/// newlines or spaces, or written back to back ("PUPD"); parameters
-/// separated by commas or spaces. The pen starts up at (0, 0); a path starts
-/// where the pen goes down and ends when it goes up.
-/// Coordinates: plotter units. Without a step size they are steps (whole
-/// numbers); with one, a plotter unit is 0.025 mm and positions are rounded
-/// as for G-code.
-/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::unsupported for any other
-/// instruction or SC / IP with parameters ("unsupported instruction 'CI'");
-/// Errc::syntax for an odd number of coordinates, a malformed number, a
-/// character that starts no instruction; Errc::limit as for G-code.
-/// Thread-safe.
+/// Reads HP-GL / HP-GL/2 as a plotter interprets it (docs/cli.md lists the
+/// instructions): pen moves (PU PD PA PR PE), arcs and circles (AA AR AT RT
+/// CI), rectangles, wedges and polygons as outlines (EA ER RA RR EW WG PM EP
+/// FP), Beziers (BZ BR), user scaling (SC IP IR), clipping to the window
+/// (IW), rotation (RO), pens (SP; VectorPath::pen, pen 0 draws nothing),
+/// labels and symbols in the stroke font (LB SM DT SI SR DI DR SL ES LO CP),
+/// comments, and device-control / PCL escapes skipped; instructions that do
+/// not change the drawn paths (line types, widths, fills, page size ...)
+/// are accepted. Curves are flattened to chords of the chord angle (5
+/// degrees by default). A path starts where the pen goes down and ends when
+/// it lifts, changes pen, or leaves the window.
+/// Coordinates: plotter units, rounded to the nearest unit (halves away
+/// from zero); with a step size, a plotter unit is 0.025 mm, rounded to the
+/// nearest step.
+/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::unsupported for an unknown
+/// instruction ("unsupported instruction 'ZZ'"); Errc::syntax for an odd
+/// number of coordinates, missing parameters, a malformed number or escape,
+/// a label without its terminator, a character that starts no instruction;
+/// Errc::limit for a coordinate beyond kMaxVectorCoord. Thread-safe.
+/// Complexity: O(bytes + drawn points).
 Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& options = {});
 
 /// Dispatches to read_gcode / read_hpgl. Thread-safe.
@@ -253,7 +262,8 @@ struct GcodeWriteOptions {
 
 /// G-code text: a header comment (and `comment`, if any, on its own line), G90 (or G91) and G21 when a step size is
 /// given, then per path a G0 to its start and one G1 / G2 / G3 per move with
-/// integer (or exact decimal) X Y words; arcs carry I J relative to their
+/// integer (or exact decimal) X Y words, and a T word before a path whose
+/// pen differs from the one before (the first pen is 1); arcs carry I J relative to their
 /// start. A move with a feed gets an F word (G94, units per minute, three
 /// decimals) when it differs from the last one written (F is modal); G94 is
 /// then written in the header. Reading the text back with the same step size gives `drawing`
@@ -339,8 +349,11 @@ inline constexpr std::int64_t kLongestVectorSegment = 4096;
 /// The cut that vectors can carry. A vector (a G1, a PD pair, an SVG line)
 /// has end points only, no phase, and `stepzip interpolate` draws it at the
 /// profile's default phase; so this cut uses only default-phase segments:
-/// at each point, of the exact segments starting there (at most
-/// kLongestVectorSegment ticks), the longest that the default phase draws.
+/// at each point, of the segments starting there that the default phase
+/// draws exactly (at most kLongestVectorSegment ticks, and at most 256
+/// shorter than the longest), the one after which the next such segment
+/// reaches farthest (the longer on a tie); `kind` greedy weighs the six
+/// longest, optimal all of them (slower; patent is taken as greedy).
 /// One step is always such a segment, so the cut always exists; for steps
 /// the profile drew itself from a polyline it usually finds the polyline's
 /// vertices (or fewer, merged). Appends to `out` segments whose expansion in
@@ -349,7 +362,8 @@ inline constexpr std::int64_t kLongestVectorSegment = 4096;
 /// Complexity: O(n) recognizer work plus O(length) per candidate checked;
 /// O(kLongestVectorSegment^2) per segment in the worst case.
 Result<void> segment_default_phase(std::span<const Step> steps, int axes, Profile p,
-                                   std::vector<Segment>& out);
+                                   std::vector<Segment>& out,
+                                   SegmenterKind kind = SegmenterKind::greedy);
 
 /// Redraws `drawing` with interpolate_drawing() under `profile` (lines at
 /// the default phase) and compares the chains with `chains`, skipping those

@@ -48,7 +48,7 @@ Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profil
         SegmentedChain sc;
         sc.chain = chain;
         auto r = vectors && kind != SegmenterKind::patent
-                     ? segment_default_phase(chain.steps, chain.axes, profile, sc.segments)
+                     ? segment_default_phase(chain.steps, chain.axes, profile, sc.segments, kind)
                      : segment_steps(chain.steps, chain.axes, profile, kind, sc.segments, &stats);
         if (!r) return make_error(r.error().code, where + r.error().message);
         if (kind == SegmenterKind::patent) {

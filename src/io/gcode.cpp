@@ -99,6 +99,7 @@ struct CoreState {
     i128 unit = vec::kPerMm;   // 10^-15 mm per 10^-12 file unit
     int motion = -1;           // last of G0..G3, -1 before any
     double feed = 0;
+    int pen = 1;                           // T in drawings
     std::array<i128, kMaxAxes> machine{};  // exact machine position, 10^-15 mm
     std::array<i128, kMaxAxes> offset{};   // G92: logical = machine + offset
     Point steps{};                         // machine position in steps
@@ -211,6 +212,15 @@ Result<MachineJob> read_core(std::string_view text, const CoreOptions& opt) {
             if (w.letter == 'N') continue;
             if (w.letter == 'F') {
                 st.feed = static_cast<double>(w.value) / 1e12;
+                continue;
+            }
+            if (w.letter == 'T' && opt.strict) {
+                // a tool: the pen of the paths that follow (pen plotters)
+                const i128 one = vec::pow10(12);
+                if (w.value < 0 || w.value % one != 0 || w.value / one > 1000000)
+                    return make_error(Errc::syntax, at + ": tool number " + w.text +
+                                                        " is not a whole number in 0..1000000");
+                st.pen = static_cast<int>(w.value / one);
                 continue;
             }
             if (w.letter == 'S' || w.letter == 'T') {
@@ -337,6 +347,7 @@ Result<MachineJob> read_core(std::string_view text, const CoreOptions& opt) {
         mv.rapid = st.motion == 0;
         mv.to = st.steps;
         mv.feed = st.feed;
+        mv.pen = st.pen;
         mv.line = static_cast<std::uint32_t>(line_no);
         mv.column = static_cast<std::uint32_t>(col);
         for (int a = 0; a < n_axes; ++a) {
@@ -397,7 +408,7 @@ Result<Drawing> read_gcode(std::string_view text, const VectorReadOptions& optio
         if (m.rapid) {
             open = false;
         } else {
-            if (!open) drawing.push_back(VectorPath{x, y, {}});
+            if (!open || drawing.back().pen != m.pen) drawing.push_back(VectorPath{x, y, {}, m.pen});
             open = true;
             VectorMove v;
             v.kind = m.kind;
@@ -497,7 +508,12 @@ std::string write_gcode(const Drawing& drawing, const GcodeWriteOptions& options
         const std::int64_t oy = options.relative ? y - cy : y;
         return " X" + coord_text(ox, options.step_size) + " Y" + coord_text(oy, options.step_size);
     };
+    int pen = 1;
     for (const VectorPath& path : drawing) {
+        if (path.pen != pen) {
+            pen = path.pen;
+            out += "T" + std::to_string(pen) + "\n";
+        }
         out += "G0" + xy(path.x0, path.y0) + "\n";
         cx = path.x0;
         cy = path.y0;

@@ -157,22 +157,32 @@ std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept 
 
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept {
     std::size_t i = 0;
-    auto skip_space = [&] {
-        while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+    auto skip_space = [&] {  // and ETX, which some drivers send before a plot
+        while (i < head.size() && (std::isspace(static_cast<unsigned char>(head[i])) || head[i] == '\x03'))
+            ++i;
     };
     skip_space();
     if (i >= head.size()) return std::nullopt;
     const char c0 = head[i];
     if (c0 == ';' || c0 == '(' || c0 == '%') return VectorFormat::gcode;
-    if (c0 == '\x1b' && i + 1 < head.size() && head[i + 1] == '.')
-        return VectorFormat::hpgl;  // an HP RS-232 device-control sequence opens the plot
+    if (c0 == '\x1b')
+        return VectorFormat::hpgl;  // a device-control or PCL escape opens the plot
     if (!std::isalpha(static_cast<unsigned char>(c0))) return std::nullopt;
     if (i + 1 < head.size() && std::isalpha(static_cast<unsigned char>(head[i + 1]))) {
-        const char a = static_cast<char>(std::toupper(static_cast<unsigned char>(c0)));
-        const char b = static_cast<char>(std::toupper(static_cast<unsigned char>(head[i + 1])));
-        const std::string m{a, b};
-        if (m == "IN" || m == "PU" || m == "PD" || m == "PA" || m == "PR" || m == "SP" ||
-            m == "DF")
+        // Two letters: an HP-GL mnemonic (a G-code word is one letter and
+        // a number), followed by a parameter, a separator or another one.
+        // Another letter must follow a common opening mnemonic ("INPU"),
+        // so that a word of text is not taken for HP-GL.
+        const char n = i + 2 < head.size() ? head[i + 2] : ';';
+        if (std::isalpha(static_cast<unsigned char>(n))) {
+            const std::string m{static_cast<char>(std::toupper(static_cast<unsigned char>(c0))),
+                                static_cast<char>(std::toupper(static_cast<unsigned char>(head[i + 1])))};
+            for (const char* k : {"IN", "DF", "BP", "PS", "PU", "PD", "PA", "PR", "SP", "CO"})
+                if (m == k) return VectorFormat::hpgl;
+            return std::nullopt;
+        }
+        if (std::isdigit(static_cast<unsigned char>(n)) || std::isspace(static_cast<unsigned char>(n)) ||
+            n == ';' || n == ',' || n == '-' || n == '+' || n == '.' || n == '"' || n == ':')
             return VectorFormat::hpgl;
         return std::nullopt;
     }

@@ -13,6 +13,7 @@
 // itself is usually cut at its first candidate. Complexity: O(n) for the
 // recognizer plus the checks above.
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 
 #include "stepzip/segment/segmenters.hpp"
@@ -114,18 +115,19 @@ private:
 }  // namespace
 
 Result<void> segment_default_phase(std::span<const Step> steps, int axes, Profile p,
-                                   std::vector<Segment>& out) {
+                                   std::vector<Segment>& out, SegmenterKind kind) {
     if (auto r = profile_accepts(p, steps, axes); !r) return r;
     // Greedy with one segment of look-ahead: of the longest few
     // default-phase segments at a point, the one after which the next
     // default-phase segment reaches farthest (the longest on a tie). Plain
     // greedy may run a few steps past a polyline's vertex, and the rest of
     // the next line, drawn from its vertex, is then seldom one segment.
-    constexpr std::size_t kChoices = 6;
+    // Greedy weighs the longest six; optimal every one (slower).
+    const std::size_t choices = kind == SegmenterKind::optimal ? SIZE_MAX : 6;
     DefaultCandidates here(steps, axes, p), next(steps, axes, p);
     std::size_t i = 0;
     while (i < steps.size()) {
-        const std::vector<std::size_t> hits = here.at(i, kChoices);
+        const std::vector<std::size_t> hits = here.at(i, choices);
         if (hits.empty())  // cannot happen: a single step is drawn at every phase
             return make_error(Errc::mismatch,
                               "no default-phase segment at step " + std::to_string(i + 1));
