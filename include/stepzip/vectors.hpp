@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stepzip/chain.hpp"
+#include "stepzip/document.hpp"
 #include "stepzip/error.hpp"
 #include "stepzip/interpolate/arc.hpp"
 #include "stepzip/interpolate/feedrate.hpp"
@@ -290,8 +291,23 @@ struct DrawingInterpolation {
 /// max_steps), Errc::invalid_argument from the line and arc interpolators
 /// (coordinates beyond kMaxInterpolateCoord, an arc end off its circle).
 /// Thread-safe. Complexity: O(steps).
+/// `pens`, when given, receives the pen of each chain (VectorPath::pen).
 Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
-                                               const DrawingInterpolation& options = {});
+                                               const DrawingInterpolation& options = {},
+                                               std::vector<int>* pens = nullptr);
+
+/// Chain text (freeman or points, write_chains()) that keeps the pens:
+/// before each run of chains with the same pen a comment line "# pen N"
+/// (none when every pen is 1). Errors: those of write_chains(), and
+/// Errc::unsupported for the steps format when a pen is not 1. Thread-safe.
+Result<std::string> write_chains_with_pens(InputFormat format, const std::vector<Chain>& chains,
+                                           const std::vector<int>& pens);
+
+/// The pens of the chains in freeman or points text, from its "# pen N"
+/// comment lines (a chain takes the last one before it; 1 before any).
+/// One entry per chain, in order, whatever else the text holds (the text is
+/// assumed to have been read by read_chains() already). Thread-safe.
+std::vector<int> chain_pens(InputFormat format, std::string_view text);
 
 /// HP-GL text: "IN;" and, when `comment` is not empty, CO"comment"; (double
 /// quotes in it become single ones), "SP1;", then per path

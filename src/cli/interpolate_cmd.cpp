@@ -168,10 +168,11 @@ int cmd_interpolate(const std::vector<std::string>& args) {
     how.arc_method = arc_method;
     how.max_steps = kMaxOutputSteps;
     how.source = read_options.source;
-    auto chains = interpolate_drawing(*drawing, how);
+    std::vector<int> pens;
+    auto chains = interpolate_drawing(*drawing, how, &pens);
     if (!chains) return report(chains.error());
 
-    auto text = write_chains(*to, *chains);
+    auto text = write_chains_with_pens(*to, *chains, pens);
     if (!text) return report(text.error());
     auto out = OutputFile::open(out_path, force);
     if (!out) return report(out.error());

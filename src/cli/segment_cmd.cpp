@@ -217,6 +217,14 @@ int cmd_segment(const std::vector<std::string>& args) {
                             : segments_to_drawing(cut_chains);
         if (!drawing)
             return report(make_error(drawing.error().code, source + ": " + drawing.error().message));
+        // Pens named by "# pen N" comments of the chain file.
+        if (*format != InputFormat::steps) {
+            const std::vector<int> pens = chain_pens(*format, *data);
+            std::size_t path = 0;
+            for (std::size_t c = 0; c < cut_chains.size() && path < drawing->size(); ++c)
+                if (!cut_chains[c].chain.steps.empty())
+                    (*drawing)[path++].pen = c < pens.size() ? pens[c] : 1;
+        }
         // The proof: the profile redraws the vectors into the input steps.
         std::vector<Chain> input;
         input.reserve(cut_chains.size());

@@ -17,11 +17,13 @@ std::string move_place(const std::string& source, const VectorMove& m) {
 }  // namespace
 
 Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
-                                               const DrawingInterpolation& options) {
+                                               const DrawingInterpolation& options,
+                                               std::vector<int>* pens) {
     const Profile profile = options.profile;
     const ArcMethod arc_method = options.arc_method.value_or(
         profile_eight_connected(profile) ? ArcMethod::accelerated : ArcMethod::evaluation);
     std::vector<Chain> chains;
+    if (pens) pens->clear();
     std::size_t total = 0;
     auto fail = [&](const VectorMove& m, const Error& e) {
         return make_error(e.code, move_place(options.source, m) + ": " + e.message);
@@ -61,7 +63,10 @@ Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
             x = m.x;
             y = m.y;
         }
-        if (!chain.steps.empty()) chains.push_back(std::move(chain));
+        if (!chain.steps.empty()) {
+            chains.push_back(std::move(chain));
+            if (pens) pens->push_back(path.pen);
+        }
     }
     return chains;
 }

@@ -148,6 +148,21 @@ bresenham 0 >bres8.fc
 bresenham 1 >bres4.fc
 for p in eval8 grbl marlin auto; do round_trip "bres8-$p" bres8.fc "$p"; done
 for p in eval4 patent eval8 grbl marlin auto; do round_trip "bres4-$p" bres4.fc "$p"; done
+# pens: HP-GL's SP survives as "# pen N" comments of the chain file and
+# comes back as SP (HP-GL) or T (G-code)
+printf 'SP2;PU0,0;PD10,0;SP3;PD10,10;PU20,20;PD25,25;SP1;PD30,25;' >pens.plt
+for fmt in freeman points; do
+    "$BIN" interpolate --profile eval8 pens.plt --to "$fmt" -o "pens.$fmt"
+    [ "$(grep -c '^# pen ' "pens.$fmt")" -eq 3 ] || fail "pens $fmt: $(cat "pens.$fmt")"
+    got=$("$BIN" segment "pens.$fmt" --profile eval8 --to hpgl | grep -o 'SP[0-9]*' | tr '\n' ' ')
+    [ "$got" = "SP2 SP3 SP1 SP0 " ] || fail "pens $fmt hpgl: '$got'"
+    got=$("$BIN" segment "pens.$fmt" --profile eval8 --to gcode | grep '^T' | tr '\n' ' ')
+    [ "$got" = "T2 T3 T1 " ] || fail "pens $fmt gcode: '$got'"
+    "$BIN" segment "pens.$fmt" --profile eval8 --to hpgl | "$BIN" interpolate --profile eval8 \
+        --to "$fmt" -o "pens2.$fmt"
+    cmp -s "pens.$fmt" "pens2.$fmt" || fail "pens $fmt: round trip differs"
+done
+
 # the patent segmenter's read-out is a study mode: it says when its vectors
 # do not redraw the input
 "$BIN" segment fig5.fc --segmenter patent --to gcode -o fig5b.gcode 2>note.txt
