@@ -13,6 +13,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "stepzip/document.hpp"
 #include "stepzip/vectors.hpp"
@@ -48,7 +49,8 @@ int main(int argc, char** argv) {
         }
         how.profile = *p;
     }
-    auto chains = stepzip::interpolate_drawing(*drawing, how);
+    std::vector<int> pens;  // one per chain: the HP-GL pen (SP) that drew it
+    auto chains = stepzip::interpolate_drawing(*drawing, how, &pens);
     if (!chains) {
         std::cerr << "plotter_driver: " << chains.error().message << "\n";
         return 1;
@@ -61,7 +63,7 @@ int main(int argc, char** argv) {
         for (stepzip::Step s : chain.steps) diagonal += stepzip::step_weight(s) == 2;
     }
 
-    auto out = stepzip::write_chains(stepzip::InputFormat::freeman, *chains);
+    auto out = stepzip::write_chains_with_pens(stepzip::InputFormat::freeman, *chains, pens);
     if (!out) {
         std::cerr << "plotter_driver: " << out.error().message << "\n";
         return 1;

@@ -197,23 +197,31 @@ TEST(HpglRead, AcceptsPlotterPreambleScalingAndLabels) {
     opt.source = "t.plt";
     auto d = read_hpgl(text, opt);
     ASSERT_TRUE(d) << d.error().message;
-    EXPECT_EQ(*d, (Drawing{VectorPath{195, 120, {line_to(309, 120)}},
-                           VectorPath{10, 20, {line_to(10, 30)}}}));
+    // SC0,10000,0,7500 maps user units onto P1 = (0, 0), P2 = (33600, 47520)
+    // (hp2xx's default): x times 3.36, y times 6.336, rounded. The label
+    // "-1" is drawn with the stroke font between the two lines: '-' one
+    // stroke, '1' two, upwards (DI0,1), starting at (105, 105) user units.
+    ASSERT_EQ(d->size(), 5u);
+    EXPECT_EQ(d->front(), (VectorPath{655, 760, {line_to(1038, 760)}}));
+    EXPECT_EQ(d->back(), (VectorPath{34, 127, {line_to(34, 190)}}));
+    for (std::size_t k = 1; k < 4; ++k) {
+        EXPECT_NEAR((*d)[k].x0, 353, 150);
+        EXPECT_GE((*d)[k].y0, 665);
+    }
     EXPECT_EQ(detect_vector_format(text), VectorFormat::hpgl);
 }
 
 TEST(HpglRead, EveryErrorNamesLineAndColumn) {
     const ErrorCase cases[] = {
-        {"IN;CI5;", Errc::unsupported, "t.plt:1:4: unsupported instruction 'CI'"},
-        {"IN;\nAA0,100,90;", Errc::unsupported, "t.plt:2:1: unsupported instruction 'AA'"},
+        {"IN;ZZ5;", Errc::unsupported, "t.plt:1:4: unsupported instruction 'ZZ'"},
+        {"IN;\nAA0,100;", Errc::syntax, "t.plt:2:1: AA wants a centre and an angle"},
         {"IN;LBtext", Errc::syntax, "t.plt:1:4: label (LB) not ended by ETX (0x03)"},
-        {"\x1b" "Y", Errc::syntax, "t.plt:1:1: ESC not followed by '.'"},
+        {"\x1b" "\x01", Errc::syntax, "t.plt:1:1: ESC followed by byte 0x01"},
         {"PD1,2,3;", Errc::syntax, "t.plt:1:1: odd number of coordinates (3) in PD"},
         {"PD1,,2;", Errc::syntax, "t.plt:1:5: expected a number before ','"},
-        {"PD1,2,;", Errc::syntax, "t.plt:1:7: expected a number after ','"},
         {"IN;\nSP1;\n  1,2;", Errc::syntax, "t.plt:3:3: unexpected character '1'"},
         {"P", Errc::syntax, "t.plt:1:1: incomplete instruction 'P'"},
-        {"PD1.5,2;", Errc::syntax, "t.plt:1:3: coordinate 1.5 is not a whole number"},
+        {"PD2000000000,0;", Errc::limit, "t.plt:1:3: coordinate beyond the limit"},
         {"PD1,2*;", Errc::syntax, "t.plt:1:6: unexpected character '*' in PD"},
         {"PD--1,2;", Errc::syntax, "t.plt:1:3: expected a number"},
     };

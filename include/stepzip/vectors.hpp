@@ -10,11 +10,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "stepzip/chain.hpp"
+#include "stepzip/document.hpp"
 #include "stepzip/error.hpp"
 #include "stepzip/interpolate/arc.hpp"
 #include "stepzip/interpolate/feedrate.hpp"
@@ -56,6 +58,7 @@ struct VectorMove {
 struct VectorPath {
     std::int64_t x0 = 0, y0 = 0;
     std::vector<VectorMove> moves;
+    int pen = 1;  ///< HP-GL pen (SP); 1 for G-code
     friend bool operator==(const VectorPath&, const VectorPath&) = default;
 };
 
@@ -81,8 +84,9 @@ std::string_view vector_format_name(VectorFormat f) noexcept;
 std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
 
 /// Guesses G-code or HP-GL from the first bytes of a file: HP-GL when the
-/// first instruction is a two-letter HP-GL mnemonic (IN, PU, PD, PA, PR, SP,
-/// DF) followed by a parameter, ';' or another mnemonic; G-code when the
+/// text starts with ESC (a device-control or PCL escape) or with two
+/// letters (a mnemonic; no G-code word has two) followed by a parameter, a
+/// separator or another mnemonic; G-code when the
 /// first word is a letter and a number (G0, N10, M3 ...) or the text starts
 /// with a comment or '%'. nullopt when neither fits. Thread-safe.
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept;
@@ -102,7 +106,9 @@ struct VectorReadOptions {
 ///  - G90 / G91 absolute / relative X Y; G20 / G21 inches / millimetres
 ///    (matter only with a step size; default millimetres); G17 (XY plane),
 ///    G94 (feed per minute), G4 P.. (dwell) accepted and ignored;
-///  - F (feed), S (spindle/laser power), T (tool), M (machine functions: M3 /
+///  - T n (a whole number): the pen of the paths that follow (VectorPath::pen;
+///    a new path starts where it changes);
+///  - F (feed), S (spindle/laser power), M (machine functions: M3 /
 ///    M5 pen or spindle control, M2 / M30 end ...) and N (line numbers) are
 ///    accepted and ignored: only G0 moves break paths;
 ///  - comments "; ..." to the end of the line and "( ... )", blank lines,
@@ -124,22 +130,124 @@ struct VectorReadOptions {
 /// interpolator does that).
 Result<Drawing> read_gcode(std::string_view text, const VectorReadOptions& options = {});
 
-/// Reads HP-GL. Accepted: PU / PD (pen up / down, optional coordinate pairs
-/// moved to with that pen), PA / PR (absolute / relative mode, optional
-/// coordinate pairs moved to with the current pen); IN (initialize: pen up,
-/// absolute, at (0, 0)), DF, SP, VS, LT, PW, PG, and SC / IP without
-/// parameters, all accepted and ignored; instructions separated by ';',
-/// newlines or spaces, or written back to back ("PUPD"); parameters
-/// separated by commas or spaces. The pen starts up at (0, 0); a path starts
-/// where the pen goes down and ends when it goes up.
-/// Coordinates: plotter units. Without a step size they are steps (whole
-/// numbers); with one, a plotter unit is 0.025 mm and positions are rounded
-/// as for G-code.
-/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::unsupported for any other
-/// instruction or SC / IP with parameters ("unsupported instruction 'CI'");
-/// Errc::syntax for an odd number of coordinates, a malformed number, a
-/// character that starts no instruction; Errc::limit as for G-code.
-/// Thread-safe.
+/// G-code of slicers and CAM, read as a machine job on up to six named axes
+/// (`stepzip interpolate --axes`).
+struct MachineReadOptions {
+    std::string source = "<input>";  ///< names the input in error messages
+    /// The job's axes in output order: distinct letters among X Y Z A B C E,
+    /// two to six of them (case-insensitive).
+    std::string axes = "XY";
+    /// Steps per millimetre (per degree for A B C) as exact decimals: none
+    /// (values are whole steps), one for every axis, or one per axis in the
+    /// order of `axes` (GRBL $100-$103, Marlin M92).
+    std::vector<std::string> steps_per_mm;
+};
+
+/// One planned move of a machine job. Coordinates are steps, in the order of
+/// the job's axes.
+struct MachineMove {
+    bool rapid = false;              ///< G0 (the pen is up; stepped all the same)
+    MoveKind kind = MoveKind::line;  ///< arcs turn in the X Y plane; other axes move linearly
+    Point to{};                      ///< end point
+    std::int64_t cx = 0, cy = 0;     ///< arc centre on the X and Y axes (arcs only)
+    double feed = 0;                 ///< the F word in force, units per minute as written; 0: none yet
+    int pen = 1;                     ///< read_gcode(): the T word in force (the pen)
+    std::uint32_t line = 0, column = 0;  ///< where the move was read
+};
+
+/// A stretch of moves the machine steps without a break: the job starts at
+/// the origin; a G28 that changes the position starts a new run.
+struct MachineRun {
+    Point start{};
+    std::vector<MachineMove> moves;
+};
+
+struct MachineJob {
+    int axes = 2;
+    std::string letters;  ///< the axes, upper case
+    std::vector<MachineRun> runs;
+    std::size_t skipped_words = 0;  ///< words read and skipped (M-codes, S, T, unknown words)
+};
+
+/// Reads G-code as a machine job. Accepted (case-insensitive):
+///  - G0 / G1 / G2 / G3 (modal), every move stepped, travel included;
+///    G2 / G3 turn in the X Y plane with I J centre offsets (G91.1, default)
+///    or absolute centres (G90.1) while the other axes move linearly (a
+///    helix); the axes X and Y must then be among the job's axes;
+///  - G90 / G91 absolute / relative; M82 / M83 absolute / relative E (once
+///    given they override G90 / G91 for E, as in Marlin); G20 / G21 inches /
+///    millimetres (X Y Z E; A B C are degrees);
+///  - G92 sets the position of the named axes (all axes, to 0, without any)
+///    without stepping; G28 homes the named axes (all without any): no move
+///    is planned, the machine is taken to be at 0 on those axes afterwards
+///    (their G92 offsets cleared), and a new run starts there if that moved
+///    it;
+///  - F (feed, kept in the moves), N (line numbers), G17, G94, G4 (dwell),
+///    G80 (cancel canned cycle);
+///  - skipped and counted in skipped_words: every M-code other than M82 /
+///    M83, S, T, other G-codes that do not move (G29, G21.1, ...), axis
+///    words of axes that are not in the job, any other letter.
+/// Errors (SOURCE:LINE:COLUMN): Errc::unsupported for motion words that are
+/// not G0-G3 (G5, G33, G38.x, G73, G76, G81-G89 ...), an arc given by R, an
+/// arc outside the X Y plane (G18 / G19) or without X and Y axes;
+/// Errc::syntax and Errc::limit as read_gcode(). Coordinates round per axis
+/// to the nearest step, halves away from zero (exact decimals, no drift).
+/// Thread-safe. Complexity: O(bytes).
+Result<MachineJob> read_gcode_job(std::string_view text, const MachineReadOptions& options);
+
+/// How a machine job is stepped.
+struct JobStepping {
+    Profile profile = Profile::grbl;       ///< lines at this profile's default phase
+    std::optional<ArcMethod> arc_method;   ///< as DrawingInterpolation
+    std::size_t max_steps = std::size_t{1} << 28;
+    std::string source = "<input>";
+};
+
+/// The STEP/DIR signals of a job: one chain per run, and per tick the DIR
+/// levels (bit 2i+1 for axis i) the controller holds on its direction lines.
+/// Lines: the profile's leading-axis method, one tick per step of the
+/// leading axis, every DIR bit of an axis whose move is negative set for the
+/// whole move (also on ticks where that axis rests). Arcs: X and Y by the arc
+/// method; the other axes spread over the arc's ticks by the profile's line
+/// rule; a DIR line of X or Y follows its steps (before its first step in
+/// the arc: the direction of that step). A move of zero steps is no tick.
+struct SteppedJob {
+    std::vector<Chain> chains;                  ///< one per run with steps
+    std::vector<std::vector<std::uint16_t>> dir;  ///< per chain, per tick
+};
+
+/// Steps a machine job. Errors (SOURCE:LINE:COLUMN of the move):
+/// Errc::invalid_argument when the profile does not take the job's axis
+/// count (eval4 and patent take X Y only); Errc::unsupported for a helix
+/// whose linear axis moves more steps than the arc has ticks; the errors of
+/// interpolate_drawing(). Thread-safe. Complexity: O(steps · axes).
+Result<SteppedJob> step_job(const MachineJob& job, const JobStepping& how);
+
+/// The bytes of a STEP/DIR log (the `steps` chain format, docs/formats.md):
+/// per tick, bit 2i = axis i steps, bit 2i+1 = its DIR level; the runs back
+/// to back. Errors: Errc::unsupported for more than 4 axes. Thread-safe.
+Result<std::string> step_dir_bytes(const SteppedJob& job);
+
+/// Reads HP-GL / HP-GL/2 as a plotter interprets it (docs/cli.md lists the
+/// instructions): pen moves (PU PD PA PR PE), arcs and circles (AA AR AT RT
+/// CI), rectangles, wedges and polygons as outlines (EA ER RA RR EW WG PM EP
+/// FP), Beziers (BZ BR), user scaling (SC IP IR), clipping to the window
+/// (IW), rotation (RO), pens (SP; VectorPath::pen, pen 0 draws nothing),
+/// labels and symbols in the stroke font (LB SM DT SI SR DI DR SL ES LO CP),
+/// comments, and device-control / PCL escapes skipped; instructions that do
+/// not change the drawn paths (line types, widths, fills, page size ...)
+/// are accepted. Curves are flattened to chords of the chord angle (5
+/// degrees by default). A path starts where the pen goes down and ends when
+/// it lifts, changes pen, or leaves the window.
+/// Coordinates: plotter units, rounded to the nearest unit (halves away
+/// from zero); with a step size, a plotter unit is 0.025 mm, rounded to the
+/// nearest step.
+/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::unsupported for an unknown
+/// instruction ("unsupported instruction 'ZZ'"); Errc::syntax for an odd
+/// number of coordinates, missing parameters, a malformed number or escape,
+/// a label without its terminator, a character that starts no instruction;
+/// Errc::limit for a coordinate beyond kMaxVectorCoord. Thread-safe.
+/// Complexity: O(bytes + drawn points).
 Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& options = {});
 
 /// Dispatches to read_gcode / read_hpgl. Thread-safe.
@@ -150,11 +258,13 @@ Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
 struct GcodeWriteOptions {
     bool relative = false;              ///< G91 with incremental X Y (default: G90 absolute)
     std::optional<StepSize> step_size;  ///< write millimetres (exact decimals) instead of steps
+    std::string comment;                ///< one more header comment line (none when empty)
 };
 
-/// G-code text: a header comment, G90 (or G91) and G21 when a step size is
+/// G-code text: a header comment (and `comment`, if any, on its own line), G90 (or G91) and G21 when a step size is
 /// given, then per path a G0 to its start and one G1 / G2 / G3 per move with
-/// integer (or exact decimal) X Y words; arcs carry I J relative to their
+/// integer (or exact decimal) X Y words, and a T word before a path whose
+/// pen differs from the one before (the first pen is 1); arcs carry I J relative to their
 /// start. A move with a feed gets an F word (G94, units per minute, three
 /// decimals) when it differs from the last one written (F is modal); G94 is
 /// then written in the header. Reading the text back with the same step size gives `drawing`
@@ -181,15 +291,32 @@ struct DrawingInterpolation {
 /// max_steps), Errc::invalid_argument from the line and arc interpolators
 /// (coordinates beyond kMaxInterpolateCoord, an arc end off its circle).
 /// Thread-safe. Complexity: O(steps).
+/// `pens`, when given, receives the pen of each chain (VectorPath::pen).
 Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
-                                               const DrawingInterpolation& options = {});
+                                               const DrawingInterpolation& options = {},
+                                               std::vector<int>* pens = nullptr);
 
-/// HP-GL text: "IN;SP1;" then per path "PU x0,y0;PD x1,y1,...;" and
-/// "PU;SP0;" at the end; coordinates are steps (absolute).
+/// Chain text (freeman or points, write_chains()) that keeps the pens:
+/// before each run of chains with the same pen a comment line "# pen N"
+/// (none when every pen is 1). Errors: those of write_chains(), and
+/// Errc::unsupported for the steps format when a pen is not 1. Thread-safe.
+Result<std::string> write_chains_with_pens(InputFormat format, const std::vector<Chain>& chains,
+                                           const std::vector<int>& pens);
+
+/// The pens of the chains in freeman or points text, from its "# pen N"
+/// comment lines (a chain takes the last one before it; 1 before any).
+/// One entry per chain, in order, whatever else the text holds (the text is
+/// assumed to have been read by read_chains() already). Thread-safe.
+std::vector<int> chain_pens(InputFormat format, std::string_view text);
+
+/// HP-GL text: "IN;" and, when `comment` is not empty, CO"comment"; (double
+/// quotes in it become single ones), "SP1;", then per path
+/// "PU x0,y0;PD x1,y1,...;" and "PU;SP0;" at the end; coordinates are steps
+/// (absolute).
 /// Errors: Errc::unsupported when the drawing holds an arc (HP-GL's arcs are
 /// given by angle, which integer end points cannot carry exactly).
 /// Thread-safe.
-Result<std::string> write_hpgl(const Drawing& drawing);
+Result<std::string> write_hpgl(const Drawing& drawing, std::string_view comment = {});
 
 /// A chain together with the segments reverse interpolation found for it.
 struct SegmentedChain {
@@ -232,6 +359,37 @@ struct FeedOptions {
 Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains,
                                     const FeedOptions& feed);
 
+/// Longest segment segment_default_phase() considers, in ticks.
+inline constexpr std::int64_t kLongestVectorSegment = 4096;
+
+/// The cut that vectors can carry. A vector (a G1, a PD pair, an SVG line)
+/// has end points only, no phase, and `stepzip interpolate` draws it at the
+/// profile's default phase; so this cut uses only default-phase segments:
+/// at each point, of the segments starting there that the default phase
+/// draws exactly (at most kLongestVectorSegment ticks, and at most 256
+/// shorter than the longest), the one after which the next such segment
+/// reaches farthest (the longer on a tie); `kind` greedy weighs the six
+/// longest, optimal all of them (slower; patent is taken as greedy).
+/// One step is always such a segment, so the cut always exists; for steps
+/// the profile drew itself from a polyline it usually finds the polyline's
+/// vertices (or fewer, merged). Appends to `out` segments whose expansion in
+/// order is exactly `steps`, each equal to default_segment(p, delta, axes).
+/// Errors: as profile_accepts(). Thread-safe.
+/// Complexity: O(n) recognizer work plus O(length) per candidate checked;
+/// O(kLongestVectorSegment^2) per segment in the worst case.
+Result<void> segment_default_phase(std::span<const Step> steps, int axes, Profile p,
+                                   std::vector<Segment>& out,
+                                   SegmenterKind kind = SegmenterKind::greedy);
+
+/// Redraws `drawing` with interpolate_drawing() under `profile` (lines at
+/// the default phase) and compares the chains with `chains`, skipping those
+/// without steps: the proof that vectors written for `chains` give them
+/// back. Errors: Errc::mismatch naming the first (1-based) chain that
+/// differs and the first step where it does; errors of interpolate_drawing().
+/// Thread-safe. Complexity: O(steps).
+Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
+                          Profile profile);
+
 /// How a segment looks, for colouring: an axis-parallel run, a 45° diagonal,
 /// or a general slope.
 enum class SegmentShape : std::uint8_t { run, diagonal, slope };
@@ -252,6 +410,15 @@ struct CutInfo {
 /// chains only. Errors: Errc::unsupported for another axis count.
 /// Thread-safe. The exact markup may change between versions.
 Result<std::string> write_svg(const std::vector<SegmentedChain>& chains, const CutInfo& info);
+
+/// Plain SVG for plotter programs (vpype, Inkscape, AxiDraw): one
+/// <path d="M x0 y0 L x1 y1 ..."/> per drawing path, black stroke, no fill,
+/// in one group <g transform="scale(1,-1)"> so that the coordinates are the
+/// steps as they are (integers, user units) and y grows upwards on the page;
+/// the viewBox is the drawing's bounding box with a margin of 2 units, and
+/// `comment` (if not empty) an XML comment after the root element ("--"
+/// becomes "- -"). Errors: Errc::unsupported for an arc. Thread-safe.
+Result<std::string> write_svg_paths(const Drawing& drawing, std::string_view comment = {});
 
 /// JSON: {"profile", "segmenter", "exact", "stats" (patent mode), "chains":
 /// [{"start": [..], "steps": N, "segments": [{"delta": [..], "phase": [..]}]}]}

@@ -2,6 +2,7 @@
 // forward interpolators (SPEC §6). One chain per pen-down path.
 #include <boost/program_options.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -29,10 +30,11 @@ constexpr std::size_t kMaxOutputSteps = std::size_t{1} << 28;
 int cmd_interpolate(const std::vector<std::string>& args) {
     po::options_description desc(
         "Usage: stepzip interpolate --profile P [IN | -] [OPTIONS]\n"
-        "Vectors (G-code or HP-GL) -> unit-step chains, one chain per pen-down path.\n"
+        "Vectors (G-code or HP-GL) -> unit-step chains, one chain per pen-down path;\n"
+        "with --axes, a G-code machine job -> its STEP/DIR stream, every move stepped.\n"
         "Options");
     std::string profile_arg, from_arg, to_arg = "freeman", out_arg, step_arg, arc_arg,
-                             line_arg = "profile", input;
+                             line_arg = "profile", input, axes_arg, spm_arg;
     desc.add_options()
         ("help,h", "show this help")
         ("profile", po::value(&profile_arg), "forward interpolator for lines: eval4, eval8, "
@@ -49,7 +51,16 @@ int cmd_interpolate(const std::vector<std::string>& args) {
          "G2/G3 interpolator: evaluation, accelerated, dda, prediction, recursion (default: "
          "evaluation for 4-connected profiles, accelerated for 8-connected)")
         ("line-method", po::value(&line_arg),
-         "line interpolator: profile (default), dda, carrier");
+         "line interpolator: profile (default), dda, carrier")
+        ("axes", po::value(&axes_arg),
+         "G-code machine job on these axes, 2 to 6 of X Y Z A B C E in output order (e.g. "
+         "XYZE): every move stepped, travel included, one chain per run (a G28 that moves "
+         "starts a new one); --to steps writes the STEP/DIR bytes with each DIR line held "
+         "for the whole move")
+        ("steps-per-mm", po::value(&spm_arg),
+         "with --axes: steps per mm (per degree for A B C), one value or one per axis, "
+         "comma-separated (default: coordinates are steps)")
+        ("verbose,v", "with --axes: print what was read (moves, runs, skipped words)");
     po::variables_map vm;
     if (auto exit_code = parse_command("interpolate", args, desc, "input", po::value(&input), 1, vm))
         return *exit_code;
@@ -82,6 +93,23 @@ int cmd_interpolate(const std::vector<std::string>& args) {
         line_method = parse_line_method(line_arg);
         if (!line_method) return usage_error("interpolate: unknown line method '" + line_arg + "'");
     }
+    const bool machine = !axes_arg.empty();
+    if (!spm_arg.empty() && !machine) return usage_error("interpolate: --steps-per-mm needs --axes");
+    if (machine && !step_arg.empty())
+        return usage_error("interpolate: --step-size is for drawings; with --axes give --steps-per-mm");
+    if (machine && line_method)
+        return usage_error("interpolate: --line-method is for drawings, not with --axes");
+    if (machine && from && *from != VectorFormat::gcode)
+        return usage_error("interpolate: --axes reads G-code");
+    MachineReadOptions job_options;
+    job_options.source = read_options.source;
+    job_options.axes = axes_arg;
+    for (std::size_t b = 0; !spm_arg.empty() && b <= spm_arg.size();) {
+        const std::size_t e = std::min(spm_arg.find(',', b), spm_arg.size());
+        job_options.steps_per_mm.push_back(spm_arg.substr(b, e - b));
+        b = e + 1;
+    }
+    const bool verbose = vm.count("verbose") > 0;
     const std::string out_path = vm.count("stdout") ? std::string("-") : out_arg;
     const bool force = vm.count("force") > 0;
     if (*to == InputFormat::steps && is_dash(out_path) && !force && is_terminal(stdout))
@@ -91,6 +119,39 @@ int cmd_interpolate(const std::vector<std::string>& args) {
     // Read and parse the vectors.
     auto data = read_input(input);
     if (!data) return report(data.error());
+    if (machine) {
+        auto job = read_gcode_job(*data, job_options);
+        if (!job) {
+            if (job.error().code == Errc::invalid_argument)
+                return usage_error("interpolate: " + job.error().message);
+            return report(job.error());
+        }
+        JobStepping how;
+        how.profile = *profile;
+        how.arc_method = arc_method;
+        how.max_steps = kMaxOutputSteps;
+        how.source = read_options.source;
+        auto stepped = step_job(*job, how);
+        if (!stepped) return report(stepped.error());
+        if (verbose) {
+            std::size_t moves = 0, ticks = 0;
+            for (const MachineRun& r : job->runs) moves += r.moves.size();
+            for (const Chain& c : stepped->chains) ticks += c.steps.size();
+            note("axes " + job->letters + ": " + std::to_string(moves) + " move(s) in " +
+                 std::to_string(job->runs.size()) + " run(s), " + std::to_string(ticks) +
+                 " tick(s); " + std::to_string(job->skipped_words) +
+                 " word(s) skipped (M-codes, S, T, other axes, unknown words)");
+        }
+        auto text = *to == InputFormat::steps ? step_dir_bytes(*stepped)
+                                              : write_chains(*to, stepped->chains);
+        if (!text) return report(make_error(text.error().code,
+                                            read_options.source + ": " + text.error().message));
+        auto out = OutputFile::open(out_path, force);
+        if (!out) return report(out.error());
+        if (auto r = out->write(*text); !r) return report(r.error());
+        if (auto r = out->commit(); !r) return report(r.error());
+        return 0;
+    }
     if (!from) {
         from = detect_vector_format(std::string_view(*data).substr(0, 4096));
         if (!from)
@@ -107,10 +168,11 @@ int cmd_interpolate(const std::vector<std::string>& args) {
     how.arc_method = arc_method;
     how.max_steps = kMaxOutputSteps;
     how.source = read_options.source;
-    auto chains = interpolate_drawing(*drawing, how);
+    std::vector<int> pens;
+    auto chains = interpolate_drawing(*drawing, how, &pens);
     if (!chains) return report(chains.error());
 
-    auto text = write_chains(*to, *chains);
+    auto text = write_chains_with_pens(*to, *chains, pens);
     if (!text) return report(text.error());
     auto out = OutputFile::open(out_path, force);
     if (!out) return report(out.error());

@@ -33,11 +33,13 @@ std::optional<VectorOut> parse_vector_out(const std::string& s) {
     return std::nullopt;
 }
 
-// Cuts every chain under `profile`; the patent mode keeps the approximation
+// Cuts every chain under `profile`. `vectors`: the default-phase cut that
+// vectors can carry (segment_default_phase); otherwise the segmenter's own
+// exact cut, phases included (JSON). The patent mode keeps the approximation
 // mode's read-out (end points only) and collects its deviation statistics.
 Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profile profile,
-                                        SegmenterKind kind, const std::string& source,
-                                        SegmentStats& stats) {
+                                        SegmenterKind kind, bool vectors,
+                                        const std::string& source, SegmentStats& stats) {
     std::vector<SegmentedChain> out;
     out.reserve(chains.size());
     for (std::size_t c = 0; c < chains.size(); ++c) {
@@ -45,7 +47,9 @@ Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profil
         const std::string where = source + ": chain " + std::to_string(c + 1) + ": ";
         SegmentedChain sc;
         sc.chain = chain;
-        auto r = segment_steps(chain.steps, chain.axes, profile, kind, sc.segments, &stats);
+        auto r = vectors && kind != SegmenterKind::patent
+                     ? segment_default_phase(chain.steps, chain.axes, profile, sc.segments, kind)
+                     : segment_steps(chain.steps, chain.axes, profile, kind, sc.segments, &stats);
         if (!r) return make_error(r.error().code, where + r.error().message);
         if (kind == SegmenterKind::patent) {
             std::vector<Point> ends;
@@ -90,6 +94,9 @@ int cmd_segment(const std::vector<std::string>& args) {
         ("feed-factor", po::value(&feed_factor_arg),
          "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
          "(x sqrt 2)")
+        ("overlay", "SVG: the diagnostic picture (unit steps, segments coloured by shape, end "
+                    "points) instead of plain paths")
+        ("verbose,v", "name the profile chosen on stderr")
         ("quiet,q", "no notes on stderr");
     po::variables_map vm;
     if (auto exit_code = parse_command("segment", args, desc, "input", po::value(&input), 1, vm))
@@ -134,6 +141,10 @@ int cmd_segment(const std::vector<std::string>& args) {
             return usage_error("segment: unknown --feed-factor '" + feed_factor_arg + "'");
     }
     const bool quiet = vm.count("quiet") > 0;
+    const bool verbose = vm.count("verbose") > 0;
+    const bool overlay = vm.count("overlay") > 0;
+    if (quiet && verbose) return usage_error("segment: -q and -v conflict");
+    if (overlay && *to != VectorOut::svg) return usage_error("segment: --overlay needs --to svg");
     const std::string out_path = vm.count("stdout") ? std::string("-") : out_arg;
     const bool force = vm.count("force") > 0;
 
@@ -152,10 +163,11 @@ int cmd_segment(const std::vector<std::string>& args) {
     if (!chains) return report(chains.error());
 
     // Cut them; "auto" keeps the profile with the fewest segments.
+    const bool vectors = *to != VectorOut::json;
     SegmentStats stats;
     std::vector<SegmentedChain> cut_chains;
     if (profile) {
-        auto r = cut(*chains, *profile, *kind, source, stats);
+        auto r = cut(*chains, *profile, *kind, vectors, source, stats);
         if (!r) return report(r.error());
         cut_chains = std::move(*r);
     } else {
@@ -163,7 +175,7 @@ int cmd_segment(const std::vector<std::string>& args) {
         std::size_t best = 0;
         for (Profile p : kAllProfiles) {
             SegmentStats s;
-            auto r = cut(*chains, p, *kind, source, s);
+            auto r = cut(*chains, p, *kind, vectors, source, s);
             if (!r) {
                 if (!first_error) first_error = r.error();
                 continue;
@@ -179,6 +191,10 @@ int cmd_segment(const std::vector<std::string>& args) {
         }
         if (!profile) return report(*first_error);
     }
+    const std::string pname(profile_name(*profile));
+    if (verbose)
+        note("profile " + pname + (profile_arg == "auto" ? " (auto: fewest segments)" : "") +
+             ", segmenter " + std::string(segmenter_name(*kind)));
 
     CutInfo info;
     info.profile = *profile;
@@ -190,24 +206,55 @@ int cmd_segment(const std::vector<std::string>& args) {
             note("patent approximation mode: " + std::to_string(stats.patent_segments) +
                  " segment(s) read out, " + std::to_string(stats.patent_exact) +
                  " reproduce their steps exactly, largest deviation " +
-                 std::to_string(stats.patent_max_deviation) +
-                 " step(s); the vectors are end-point exact only");
+                 std::to_string(stats.patent_max_deviation) + " step(s)");
     }
 
     Result<std::string> text = std::string();
-    switch (*to) {
-        case VectorOut::gcode:
-        case VectorOut::hpgl: {
-            auto drawing = feed ? segments_to_drawing(cut_chains, *feed)
-                                : segments_to_drawing(cut_chains);
-            if (!drawing) return report(make_error(drawing.error().code,
-                                                   source + ": " + drawing.error().message));
-            text = *to == VectorOut::gcode ? Result<std::string>(write_gcode(*drawing, gcode_options))
-                                           : write_hpgl(*drawing);
-            break;
+    if (*to == VectorOut::json) {
+        text = write_json(cut_chains, info);
+    } else {
+        auto drawing = feed ? segments_to_drawing(cut_chains, *feed)
+                            : segments_to_drawing(cut_chains);
+        if (!drawing)
+            return report(make_error(drawing.error().code, source + ": " + drawing.error().message));
+        // Pens named by "# pen N" comments of the chain file.
+        if (*format != InputFormat::steps) {
+            const std::vector<int> pens = chain_pens(*format, *data);
+            std::size_t path = 0;
+            for (std::size_t c = 0; c < cut_chains.size() && path < drawing->size(); ++c)
+                if (!cut_chains[c].chain.steps.empty())
+                    (*drawing)[path++].pen = c < pens.size() ? pens[c] : 1;
         }
-        case VectorOut::svg: text = write_svg(cut_chains, info); break;
-        case VectorOut::json: text = write_json(cut_chains, info); break;
+        // The proof: the profile redraws the vectors into the input steps.
+        std::vector<Chain> input;
+        input.reserve(cut_chains.size());
+        for (SegmentedChain& sc : cut_chains) input.push_back(sc.chain);
+        const auto redraw = check_redraw(*drawing, input, *profile);
+        std::string comment = "profile " + pname + ": `stepzip interpolate --profile " + pname +
+                              "` redraws these vectors into the input steps";
+        if (!info.exact) {
+            comment = "profile " + pname + ", patent approximation mode: end points read out by "
+                      "SU 1089551 Fig. 5";
+            comment += redraw ? "; they redraw the input steps exactly"
+                              : "; they do not redraw the input steps exactly";
+            if (!redraw && !quiet)
+                note("patent approximation mode: the vectors do not redraw the input exactly (" +
+                     redraw.error().message + ")");
+        } else if (!redraw) {
+            return report(make_error(Errc::mismatch, source + ": internal error, nothing written: " +
+                                                         redraw.error().message));
+        }
+        switch (*to) {
+            case VectorOut::gcode:
+                gcode_options.comment = comment;
+                text = write_gcode(*drawing, gcode_options);
+                break;
+            case VectorOut::hpgl: text = write_hpgl(*drawing, comment); break;
+            case VectorOut::svg:
+                text = overlay ? write_svg(cut_chains, info) : write_svg_paths(*drawing, comment);
+                break;
+            case VectorOut::json: break;
+        }
     }
     if (!text) return report(make_error(text.error().code, source + ": " + text.error().message));
 

@@ -101,6 +101,50 @@ for p in eval4 eval8 patent grbl marlin; do
         || fail "sample plot under $p"
 done
 
+# --axes: a slicer's G-code as a machine job, every move stepped
+cat >print.gcode <<'GCODE'
+; Slic3r-style start code
+M107
+M104 S200 ; set temperature
+G28 ; home all axes
+G1 Z5 F5000 ; lift nozzle
+G21
+G90
+M82
+G92 E0
+G1 Z0.35 F7800
+G1 E-2 F2400
+G92 E0
+G1 X10.5 Y10.2 F7800
+G1 E2 F2400
+G1 X20.125 Y10.2 E2.5
+M83
+G1 X20.125 Y20.3 E0.5
+GCODE
+"$BIN" interpolate --profile grbl --axes XYZE --steps-per-mm 80,80,400,93 print.gcode \
+    --to steps -o print.steps -v 2>note.txt || fail "--axes: exit $?"
+grep -q 'axes XYZE: 7 move(s) in 1 run(s), 6650 tick(s); 3 word(s) skipped' note.txt \
+    || fail "--axes -v: $(cat note.txt)"
+# one byte per tick of the leading axes: Z 2000 + 1860, E 186, X 840, E 186,
+# X 770, Y 808 (E2.5 after G92 E0 at machine E -2 is 0.5 mm = 46.5 -> 47 steps)
+[ "$(wc -c <print.steps)" -eq 6650 ] || fail "--axes: $(wc -c <print.steps) bytes"
+got=$("$BIN" interpolate --profile grbl --axes XYZE --steps-per-mm 80,80,400,93 print.gcode \
+    --to points | tail -n 1)
+[ "$got" = "1610 1624 140 93" ] || fail "--axes end point: '$got'"
+# the steps file reads back as one four-axis chain ending there
+got=$("$BIN" segment print.steps --to json --profile grbl -q | grep -o '"start":\[[^]]*\],"steps":[0-9]*')
+[ "$got" = '"start":[0,0,0,0],"steps":6650' ] || fail "--axes steps file: '$got'"
+printf 'G1 X1 Y1\nG5 I1 J1 P1 Q1 X2 Y2\n' >spline.gcode
+expect_err "motion word" 1 "spline.gcode:2:1: unsupported motion word 'G5'" \
+    "$BIN" interpolate --profile grbl --axes XY spline.gcode
+expect_err "spm without axes" 2 "--steps-per-mm needs --axes" \
+    "$BIN" interpolate --profile grbl --steps-per-mm 80 spec.gcode
+expect_err "bad axes" 2 "axes 'XQ'" "$BIN" interpolate --profile grbl --axes XQ spec.gcode
+expect_err "eval4 on 4 axes" 1 "profile eval4 takes 2 axes" \
+    "$BIN" interpolate --profile eval4 --axes XYZE --steps-per-mm 80 print.gcode
+expect_err "spm count" 2 "3 values for 4 axes" \
+    "$BIN" interpolate --profile grbl --axes XYZE --steps-per-mm 1,2,3 print.gcode
+
 if [ "$failures" -ne 0 ]; then
     echo "$failures failure(s)"
     exit 1

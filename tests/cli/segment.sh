@@ -79,14 +79,102 @@ grep -q '^G1 X1 Y0.425$' mm.gcode || fail "--step-size output"
 # auto picks a profile; svg output is a picture with the segments
 "$BIN" segment plot8.fc --to json >plot8.json || fail "auto: exit $?"
 grep -q '"profile":"eval8"' plot8.json || fail "auto on eval8 data"
-"$BIN" segment plot8.fc --to svg -o plot.svg || fail "svg: exit $?"
+"$BIN" segment plot8.fc --to svg --overlay -o plot.svg || fail "svg: exit $?"
 head -c 200 plot.svg | grep -q '<svg' || fail "svg: not an svg"
 grep -q '<polyline' plot.svg || fail "svg: no chain polyline"
 grep -q '<line ' plot.svg || fail "svg: no segments"
+# plain SVG (the default): one path per chain, the steps as user units
+"$BIN" segment lines.fc --profile eval8 --to svg -o lines.svg || fail "plain svg: exit $?"
+grep -q '<path d="M0 0 L40 17 L-3 5"/>' lines.svg || fail "plain svg: path $(cat lines.svg)"
+grep -q 'transform="scale(1,-1)"' lines.svg || fail "plain svg: y not flipped"
+grep -q '<!-- profile eval8: ' lines.svg || fail "plain svg: no profile comment"
+expect_err "--overlay without svg" 2 "--overlay needs --to svg" \
+    "$BIN" segment lines.fc --to gcode --overlay
 # points input, format given
 printf '0 0\n1 0\n2 1\n' | "$BIN" segment --format points --profile eval8 --to gcode -c >points.gcode \
     || fail "points input: exit $?"
 grep -q '^G1 X2 Y1$' points.gcode || fail "points input"
+
+# Steps -> vectors -> steps is exact: vectors carry no phase, so segment
+# writes only default-phase segments, proved by redrawing them before
+# writing. The example of G1 X7 Y3 / X20 Y5 / X30 Y30 under every profile
+# comes back as its own three vertices.
+printf 'G0 X0 Y0\nG1 X7 Y3\nX20 Y5\nX30 Y30\n' >three.gcode
+for p in eval4 eval8 patent grbl marlin; do
+    "$BIN" interpolate --profile "$p" three.gcode -o "three-$p.fc"
+    got=$("$BIN" segment "three-$p.fc" --profile "$p" --to gcode | grep '^G1' | tr '\n' ' ')
+    [ "$got" = "G1 X7 Y3 G1 X20 Y5 G1 X30 Y30 " ] || fail "three $p: '$got'"
+done
+# round_trip NAME CHAINS PROFILE: --to gcode and hpgl under PROFILE (auto:
+# the profile named in the output's comment) redraw into CHAINS.
+round_trip() {
+    local name=$1 chains=$2 profile=$3 to redraw
+    for to in gcode hpgl; do
+        "$BIN" segment "$chains" --profile "$profile" --to "$to" -o "$name.$to" -v 2>"$name.err" \
+            || { fail "$name $to: exit $? $(cat "$name.err")"; continue; }
+        redraw=$(sed -n 's/.*profile \([a-z0-9]*\): `stepzip interpolate --profile \1`.*/\1/p' \
+            "$name.$to" | head -1)
+        [ -n "$redraw" ] || { fail "$name $to: no profile comment"; continue; }
+        [ "$profile" = auto ] || [ "$redraw" = "$profile" ] || fail "$name $to: comment names $redraw"
+        grep -q "^stepzip: profile $redraw" "$name.err" || fail "$name $to: -v: $(cat "$name.err")"
+        "$BIN" interpolate --profile "$redraw" "$name.$to" -o "$name.$to.fc"
+        "$BIN" segment "$chains" --profile "$redraw" --to json -q | grep -q '"steps":' \
+            || fail "$name: json"
+        cmp -s "$chains" "$name.$to.fc" || fail "$name $to: redrawn chains differ (profile $redraw)"
+    done
+}
+# polylines drawn by each profile: the Hershey specimen sheet of corpora/plotter
+for p in eval4 eval8 patent grbl marlin; do
+    round_trip "hershey-$p" "$SRC/corpora/plotter/hershey-$p.fc" "$p"
+done
+round_trip hershey-auto "$SRC/corpora/plotter/hershey-grbl.fc" auto
+round_trip gnuplot-eval4 "$SRC/corpora/plotter/gnuplot-eval4.fc" eval4
+# Bresenham-stepped plots (textbook error term 2dy - dx: no profile's own
+# phase), 8-connected and as a 4-connected staircase, under every profile
+# that takes them
+bresenham() {  # bresenham FOUR: a star of lines from (0, 0) as one chain
+    awk -v four="$1" 'function abs(v) { return v < 0 ? -v : v }
+    function line(dx, dy,   ax, ay, sx, sy, xm, maj, mnr, e, i, d) {
+        ax = abs(dx); ay = abs(dy); sx = dx < 0 ? -1 : 1; sy = dy < 0 ? -1 : 1
+        xm = ax >= ay; maj = xm ? ax : ay; mnr = xm ? ay : ax; e = 2 * mnr - maj
+        for (i = 0; i < maj; i++) {
+            if (e > 0) {
+                e -= 2 * maj
+                if (four) out = out code(xm ? sx : 0, xm ? 0 : sy) code(xm ? 0 : sx, xm ? sy : 0)
+                else out = out code(sx, sy)
+            } else out = out code(xm ? sx : 0, xm ? 0 : sy)
+            e += 2 * mnr
+        }
+    }
+    function code(x, y) { return x == 1 ? (y == 1 ? 1 : y == -1 ? 7 : 0) : x == -1 ? (y == 1 ? 3 : y == -1 ? 5 : 4) : (y == 1 ? 2 : 6) }
+    BEGIN { out = ""; n = split("97 41 -13 88 -120 -7 5 -66 70 -23 -1 55 -59 -91 131 12", v, " ")
+        for (k = 1; k < n; k += 2) line(v[k], v[k + 1])
+        print "0 0 " out }'
+}
+bresenham 0 >bres8.fc
+bresenham 1 >bres4.fc
+for p in eval8 grbl marlin auto; do round_trip "bres8-$p" bres8.fc "$p"; done
+for p in eval4 patent eval8 grbl marlin auto; do round_trip "bres4-$p" bres4.fc "$p"; done
+# pens: HP-GL's SP survives as "# pen N" comments of the chain file and
+# comes back as SP (HP-GL) or T (G-code)
+printf 'SP2;PU0,0;PD10,0;SP3;PD10,10;PU20,20;PD25,25;SP1;PD30,25;' >pens.plt
+for fmt in freeman points; do
+    "$BIN" interpolate --profile eval8 pens.plt --to "$fmt" -o "pens.$fmt"
+    [ "$(grep -c '^# pen ' "pens.$fmt")" -eq 3 ] || fail "pens $fmt: $(cat "pens.$fmt")"
+    got=$("$BIN" segment "pens.$fmt" --profile eval8 --to hpgl | grep -o 'SP[0-9]*' | tr '\n' ' ')
+    [ "$got" = "SP2 SP3 SP1 SP0 " ] || fail "pens $fmt hpgl: '$got'"
+    got=$("$BIN" segment "pens.$fmt" --profile eval8 --to gcode | grep '^T' | tr '\n' ' ')
+    [ "$got" = "T2 T3 T1 " ] || fail "pens $fmt gcode: '$got'"
+    "$BIN" segment "pens.$fmt" --profile eval8 --to hpgl | "$BIN" interpolate --profile eval8 \
+        --to "$fmt" -o "pens2.$fmt"
+    cmp -s "pens.$fmt" "pens2.$fmt" || fail "pens $fmt: round trip differs"
+done
+
+# the patent segmenter's read-out is a study mode: it says when its vectors
+# do not redraw the input
+"$BIN" segment fig5.fc --segmenter patent --to gcode -o fig5b.gcode 2>note.txt
+grep -q 'the vectors do not redraw the input exactly' note.txt || fail "fig5 redraw note: $(cat note.txt)"
+grep -q 'do not redraw the input steps exactly' fig5b.gcode || fail "fig5 comment: $(cat fig5b.gcode)"
 
 # errors: one line, exit 1, no output file
 expect_err "no overwrite" 1 "plot.svg: already exists" "$BIN" segment plot8.fc --to svg -o plot.svg

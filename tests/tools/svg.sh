@@ -23,7 +23,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 check() {
     local name=$1 chains=$2
     shift 2
-    "$BIN" segment "$chains" --to svg -q "$@" >"$name.svg" 2>"$name.err" \
+    "$BIN" segment "$chains" --to svg --overlay -q "$@" >"$name.svg" 2>"$name.err" \
         || { fail "$name: segment: $(cat "$name.err")"; return; }
     rsvg-convert -o "$name.png" "$name.svg" 2>"$name.err" \
         || { fail "$name: rsvg-convert: $(cat "$name.err")"; return; }

@@ -1,5 +1,6 @@
 // stepzip — forward interpolation of a vector drawing (what `stepzip
 // interpolate` does): one chain per pen-down path.
+#include <algorithm>
 #include <string>
 
 #include "stepzip/vectors.hpp"
@@ -16,11 +17,13 @@ std::string move_place(const std::string& source, const VectorMove& m) {
 }  // namespace
 
 Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
-                                               const DrawingInterpolation& options) {
+                                               const DrawingInterpolation& options,
+                                               std::vector<int>* pens) {
     const Profile profile = options.profile;
     const ArcMethod arc_method = options.arc_method.value_or(
         profile_eight_connected(profile) ? ArcMethod::accelerated : ArcMethod::evaluation);
     std::vector<Chain> chains;
+    if (pens) pens->clear();
     std::size_t total = 0;
     auto fail = [&](const VectorMove& m, const Error& e) {
         return make_error(e.code, move_place(options.source, m) + ": " + e.message);
@@ -60,9 +63,41 @@ Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
             x = m.x;
             y = m.y;
         }
-        if (!chain.steps.empty()) chains.push_back(std::move(chain));
+        if (!chain.steps.empty()) {
+            chains.push_back(std::move(chain));
+            if (pens) pens->push_back(path.pen);
+        }
     }
     return chains;
+}
+
+Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
+                          Profile profile) {
+    DrawingInterpolation how;
+    how.profile = profile;
+    how.source = "redrawn vectors";
+    auto redrawn = interpolate_drawing(drawing, how);
+    if (!redrawn) return std::move(redrawn).error();
+    std::size_t r = 0;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const Chain& want = chains[c];
+        if (want.steps.empty()) continue;
+        const std::string which = "chain " + std::to_string(c + 1) + ": profile " +
+                                  std::string(profile_name(profile)) + " redraws the vectors ";
+        if (r == redrawn->size()) return make_error(Errc::mismatch, which + "into no chain");
+        const Chain& got = (*redrawn)[r++];
+        if (got.start != want.start)
+            return make_error(Errc::mismatch, which + "from another start");
+        const auto diff = std::mismatch(got.steps.begin(), got.steps.end(), want.steps.begin(),
+                                        want.steps.end());
+        if (diff.first != got.steps.end() || diff.second != want.steps.end())
+            return make_error(Errc::mismatch,
+                              which + "differently from step " +
+                                  std::to_string(diff.second - want.steps.begin() + 1));
+    }
+    if (r != redrawn->size())
+        return make_error(Errc::mismatch, "the vectors redraw into more chains than the input has");
+    return {};
 }
 
 }  // namespace stepzip

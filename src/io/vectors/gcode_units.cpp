@@ -68,23 +68,48 @@ std::string format_e12(i128 value_e12) {
     return out;
 }
 
-Result<std::int64_t> to_steps(i128 pos_e15, const std::optional<StepSize>& step,
-                              const std::string& where, std::string_view text) {
-    const i128 unit = step ? i128{step->mm_e12} * 1000 : pow10(15);
-    i128 q = pos_e15 / unit;
-    const i128 r = pos_e15 % unit;
+AxisScale AxisScale::of(const std::optional<StepSize>& step) noexcept {
+    AxisScale s;
+    if (step) {
+        s.den = i128{step->mm_e12} * 1000;
+        s.rounds = true;
+    }
+    return s;
+}
+
+AxisScale AxisScale::per_mm(i128 steps_per_mm_e12) noexcept {
+    AxisScale s;
+    s.num = steps_per_mm_e12;
+    s.den = pow10(27);
+    s.rounds = true;
+    return s;
+}
+
+Result<std::int64_t> to_steps(i128 pos_e15, const AxisScale& scale, const std::string& where,
+                              std::string_view text) {
+    i128 scaled = 0;
+    if (__builtin_mul_overflow(pos_e15, scale.num, &scaled))
+        return make_error(Errc::limit, where + ": coordinate " + std::string(text) +
+                                           " is beyond the limit of 2^30 steps");
+    i128 q = scaled / scale.den;
+    const i128 r = scaled % scale.den;
     if (r != 0) {
-        if (!step)
+        if (!scale.rounds)
             return make_error(Errc::syntax, where + ": coordinate " + std::string(text) +
                                                 " is not a whole number of steps (set a step "
                                                 "size to read millimetres)");
         const i128 twice = (r < 0 ? -r : r) * 2;
-        if (twice >= unit) q += pos_e15 < 0 ? -1 : 1;  // halves away from zero
+        if (twice >= scale.den) q += scaled < 0 ? -1 : 1;  // halves away from zero
     }
     if (q > kMaxVectorCoord || q < -kMaxVectorCoord)
         return make_error(Errc::limit, where + ": coordinate " + std::string(text) +
                                            " is beyond the limit of 2^30 steps");
     return static_cast<std::int64_t>(q);
+}
+
+Result<std::int64_t> to_steps(i128 pos_e15, const std::optional<StepSize>& step,
+                              const std::string& where, std::string_view text) {
+    return to_steps(pos_e15, AxisScale::of(step), where, text);
 }
 
 std::string place(const std::string& source, std::size_t line, std::size_t column) {
@@ -132,22 +157,32 @@ std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept 
 
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept {
     std::size_t i = 0;
-    auto skip_space = [&] {
-        while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+    auto skip_space = [&] {  // and ETX, which some drivers send before a plot
+        while (i < head.size() && (std::isspace(static_cast<unsigned char>(head[i])) || head[i] == '\x03'))
+            ++i;
     };
     skip_space();
     if (i >= head.size()) return std::nullopt;
     const char c0 = head[i];
     if (c0 == ';' || c0 == '(' || c0 == '%') return VectorFormat::gcode;
-    if (c0 == '\x1b' && i + 1 < head.size() && head[i + 1] == '.')
-        return VectorFormat::hpgl;  // an HP RS-232 device-control sequence opens the plot
+    if (c0 == '\x1b')
+        return VectorFormat::hpgl;  // a device-control or PCL escape opens the plot
     if (!std::isalpha(static_cast<unsigned char>(c0))) return std::nullopt;
     if (i + 1 < head.size() && std::isalpha(static_cast<unsigned char>(head[i + 1]))) {
-        const char a = static_cast<char>(std::toupper(static_cast<unsigned char>(c0)));
-        const char b = static_cast<char>(std::toupper(static_cast<unsigned char>(head[i + 1])));
-        const std::string m{a, b};
-        if (m == "IN" || m == "PU" || m == "PD" || m == "PA" || m == "PR" || m == "SP" ||
-            m == "DF")
+        // Two letters: an HP-GL mnemonic (a G-code word is one letter and
+        // a number), followed by a parameter, a separator or another one.
+        // Another letter must follow a common opening mnemonic ("INPU"),
+        // so that a word of text is not taken for HP-GL.
+        const char n = i + 2 < head.size() ? head[i + 2] : ';';
+        if (std::isalpha(static_cast<unsigned char>(n))) {
+            const std::string m{static_cast<char>(std::toupper(static_cast<unsigned char>(c0))),
+                                static_cast<char>(std::toupper(static_cast<unsigned char>(head[i + 1])))};
+            for (const char* k : {"IN", "DF", "BP", "PS", "PU", "PD", "PA", "PR", "SP", "CO"})
+                if (m == k) return VectorFormat::hpgl;
+            return std::nullopt;
+        }
+        if (std::isdigit(static_cast<unsigned char>(n)) || std::isspace(static_cast<unsigned char>(n)) ||
+            n == ';' || n == ',' || n == '-' || n == '+' || n == '.' || n == '"' || n == ':')
             return VectorFormat::hpgl;
         return std::nullopt;
     }

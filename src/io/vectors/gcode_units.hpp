@@ -38,6 +38,24 @@ inline constexpr i128 kPerMm = 1000;      // millimetres
 inline constexpr i128 kPerInch = 25400;   // inches: 25.4 mm
 inline constexpr i128 kPerPlotterUnit = 25;  // HP-GL: 0.025 mm
 
+/// How a position in 10^-15 mm becomes steps: steps = pos * num / den,
+/// rounded to the nearest step (halves away from zero) when `rounds`, else
+/// required to be whole.
+struct AxisScale {
+    i128 num = 1;
+    i128 den = pow10(15);  // no step size: values are steps, whole
+    bool rounds = false;
+    /// mm per step (absent: values are steps).
+    static AxisScale of(const std::optional<StepSize>& step) noexcept;
+    /// Steps per mm, in 10^-12 steps.
+    static AxisScale per_mm(i128 steps_per_mm_e12) noexcept;
+};
+
+/// Position to steps under `scale`. Errors: Errc::syntax (not whole when the
+/// scale does not round), Errc::limit (beyond kMaxVectorCoord).
+Result<std::int64_t> to_steps(i128 pos_e15, const AxisScale& scale, const std::string& where,
+                              std::string_view text);
+
 /// Converts a position in 10^-15 mm (or, without a step size, in 10^-15
 /// steps) to whole steps. Without a step size the position must be whole;
 /// with one it is rounded to the nearest step, halves away from zero.
