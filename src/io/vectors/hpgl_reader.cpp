@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "../gcode_units.hpp"
+#include "gcode_units.hpp"
 #include "stepzip/vectors.hpp"
 #include "stroke_font.hpp"
 
