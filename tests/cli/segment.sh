@@ -118,8 +118,9 @@ round_trip() {
         [ "$profile" = auto ] || [ "$redraw" = "$profile" ] || fail "$name $to: comment names $redraw"
         grep -q "^stepzip: profile $redraw" "$name.err" || fail "$name $to: -v: $(cat "$name.err")"
         "$BIN" interpolate --profile "$redraw" "$name.$to" -o "$name.$to.fc"
-        "$BIN" segment "$chains" --profile "$redraw" --to json -q | grep -q '"steps":' \
-            || fail "$name: json"
+        "$BIN" segment "$chains" --profile "$redraw" --to json -q >"$name.json" \
+            || fail "$name: json: exit $?"
+        grep -q '"steps":' "$name.json" || fail "$name: json"
         cmp -s "$chains" "$name.$to.fc" || fail "$name $to: redrawn chains differ (profile $redraw)"
     done
 }
