@@ -23,7 +23,9 @@
 // mirror image. The hulls change only by the run's end points.
 // What it keeps of its own: the valid prefixes of a run as an interval; the
 // hulls, bounds and run updates are the kernel's (dss.hpp, RunState).
-// Complexity: O(log h) per run, h = hull vertices (O(log n) for a DSS).
+// Invariant: after each commit() the state equals WordRecognizer's after the
+// same letters one by one. Complexity: O(log h) per run, h = hull vertices
+// (O(log n) for a DSS).
 #pragma once
 
 #include <cstdint>

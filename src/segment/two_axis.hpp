@@ -13,7 +13,9 @@
 // straight segment or where the run's last step is not a valid end. Its
 // answers are those of RunSegment and of the letter-by-letter
 // SegmentRecognizer (tests/recognizer_test.cpp, tests/segmenter_two_axis_test.cpp).
-// Complexity: O(log h) per run, h = hull vertices; fit() is O(runs).
+// Invariant: longest() returns RunSegment's (and SegmentRecognizer's) longest
+// exact prefix. Complexity: O(log h) per run, h = hull vertices; fit() is
+// O(runs).
 #pragma once
 
 #include <cstdint>

@@ -72,7 +72,8 @@ private:
 /// for eval4, a leading axis that moves on every tick for the 8-connected
 /// profiles, kMaxSegmentTotal) are checked by can_extend(); exactness by one
 /// WordRecognizer per evaluation function.
-/// Complexity: O(axes · log h) per step. Not thread-safe.
+/// Invariant: longest_valid() is the longest prefix read that is one exact
+/// segment. Complexity: O(axes · log h) per step. Not thread-safe.
 class SegmentRecognizer {
 public:
     /// Precondition: p is not Profile::patent; 2 <= axes <= profile_max_axes(p).
