@@ -112,7 +112,8 @@ for c in "${sig_cmds[@]}"; do
         pid=$!
         # Wait until the work is under way, then interrupt it: compress and
         # decompress open their temporary output first (wait for it, at most
-        # half a second); interpolate and segment write theirs at the end.
+        # half a second, and signal at once: decompression takes a fraction
+        # of a second); interpolate and segment write theirs at the end.
         had_temp=no
         case ${cc[0]} in
             compress | decompress)
@@ -121,7 +122,7 @@ for c in "${sig_cmds[@]}"; do
                     sleep 0.01
                 done ;;
         esac
-        sleep 0.1
+        [ $had_temp = yes ] || sleep 0.1
         kill -s "$sig" "$pid" 2>/dev/null || true
         rc=0
         wait "$pid" || rc=$?
