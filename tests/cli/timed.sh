@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # --format timed: a STEP/DIR log with idle ticks read with time as axis 0.
-# Round trip of corpora/timed/ at levels 3 and 19 (compress, verify,
-# decompress, byte-compare), the frame names the format, and the timed
-# reading is smaller than the steps reading on the 2-axis stream.
+# Round trip of corpora/timed/ at level 3, and of the 2-axis stream at 19
+# (compress, verify, decompress, byte-compare); the frame names the format;
+# the timed reading is smaller than the steps reading on the 2-axis stream.
 set -euo pipefail
 stepzip=$1
 src=$2
@@ -10,7 +10,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail=0
 for f in "$src"/corpora/timed/*.steps; do
-  for level in 3 19; do
+  levels=3
+  case "$f" in *2axis*) levels="3 19" ;; esac
+  for level in $levels; do
     "$stepzip" compress -q -f --format timed -L $level "$f" -o "$work/t.stz"
     "$stepzip" verify "$work/t.stz" "$f" >/dev/null || { echo "FAIL verify -L $level: $f"; fail=1; }
     "$stepzip" decompress -q -f "$work/t.stz" -o "$work/t.out"
