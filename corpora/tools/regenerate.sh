@@ -54,6 +54,13 @@ done
 python3 "$here/engrave_path.py" 5 $hershey/futural.jhf $hershey/scripts.jhf > "$tmp/path.txt"
 "$tmp/stepper_stream" < "$tmp/path.txt" > "$out/stepper/engrave-4axis.steps"
 
+# Timed STEP/DIR logs (idle ticks included) from a trapezoid planner.
+mkdir -p "$out/timed"
+python3 "$here/timed_stream.py" --shapes 2 --seed 3 --tick-us 30 > "$out/timed/trapezoid-2axis.steps"
+python3 "$here/timed_stream.py" --axes 3 --shapes 3 --seed 11 --steps-mm 160 160 400 \
+    --rate 4000 4000 1200 --accel 300 300 100 --jd 0.01 --tick-us 40 --segment-ms 8 \
+    --cpu-mhz 20 > "$out/timed/trapezoid-3axis.steps"
+
 # The worst case: random walks.
 python3 "$here/random_walk.py" 8 100000 1 > "$out/random/walk-8.fc"
 python3 "$here/random_walk.py" 4 100000 2 > "$out/random/walk-4.fc"

@@ -26,9 +26,10 @@ enum class InputFormat : std::uint8_t {
     freeman = 0,  ///< one chain per line: "X0 Y0 CODES", '#' comments
     points = 1,   ///< one point per line ("x y" or "x,y", N columns), blank line ends a chain
     steps = 2,    ///< binary STEP/DIR log, one byte per tick, up to 4 axes
+    timed = 3,    ///< the same log read as one chain in (time, axes): a tick is a step
 };
 
-/// The format's command-line name ("freeman", "points", "steps"); "?" for a
+/// The format's command-line name ("freeman", "points", "steps", "timed"); "?" for a
 /// value outside the enum. Thread-safe.
 std::string_view format_name(InputFormat f) noexcept;
 /// The format with that name, or nullopt. Thread-safe.

@@ -10,5 +10,6 @@
 #include "stepzip/segment.hpp"
 #include "stepzip/step.hpp"
 #include "stepzip/streaming.hpp"
+#include "stepzip/timed.hpp"
 #include "stepzip/vectors.hpp"
 #include "stepzip/version.hpp"

@@ -101,7 +101,7 @@ int cmd_compress(const std::vector<std::string>& args) {
                                        "optimal segmenter")
         ("threads,T", po::value(&threads), "compress blocks on N threads (0 = all cores; default 1); "
                                            "output does not depend on N")
-        ("format", po::value(&format), "freeman|points|steps (default: detected)")
+        ("format", po::value(&format), "freeman|points|steps|timed (default: detected; timed: a steps log read with time as axis 0)")
         ("block-size", po::value(&block_steps), "steps per block (default 1048576)")
         ("no-raw", "never carry a block as plain zstd of its bytes, even when smaller")
         ("quiet,q", po::bool_switch(&a.quiet), "no messages but errors")

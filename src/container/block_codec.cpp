@@ -90,7 +90,7 @@ Result<FrameHeader> parse_frame_header(std::string_view b, std::string_view sour
     }
     if (prof > static_cast<unsigned>(Profile::marlin))
         return make_error(Errc::corrupt, src + ": byte 5: unknown profile " + std::to_string(prof));
-    if (fmt > static_cast<unsigned>(InputFormat::steps))
+    if (fmt > static_cast<unsigned>(version == 1 ? InputFormat::steps : InputFormat::timed))
         return make_error(Errc::corrupt, src + ": byte " + (version == 1 ? "6" : "5") +
                                              ": unknown input format " + std::to_string(fmt));
     h.profile = static_cast<Profile>(prof);

@@ -7,6 +7,7 @@
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
+#include "timed_phase.hpp"
 
 namespace stepzip::stz {
 
@@ -78,11 +79,13 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
 
 // The smallest segment-model payload over `cuts` (the first on a tie);
 // `which` is its index.
-std::string smallest_segment_model(const Block& block, Profile p, const std::vector<Cut>& cuts,
-                                   std::size_t& which) {
+std::string smallest_segment_model(const Block& block, Profile p, std::vector<Cut>& cuts,
+                                   std::size_t& which, bool timed) {
     std::string best;
     for (std::size_t i = 0; i < cuts.size(); ++i) {
-        std::string alt = write_segment_model(block, p, cuts[i]);
+        if (timed)
+            for (auto& chain : cuts[i]) align_timed_phases(p, block.axes, chain);
+        std::string alt = write_segment_model(block, p, cuts[i], nullptr, timed);
         if (best.empty() || alt.size() < best.size()) {
             best = std::move(alt);
             which = i;
@@ -102,7 +105,8 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
     const std::string rec = make_block_record(kChains, 0, write_chain_payload(block, p, segs), s.level);
     std::size_t which = 0;
-    const std::size_t model = smallest_segment_model(block, p, model_cuts(block, s, segs, false), which).size();
+    std::vector<Cut> cuts = model_cuts(block, s, segs, false);
+    const std::size_t model = smallest_segment_model(block, p, cuts, which, s.timed).size();
     return rec.empty() ? model : std::min(rec.size(), model);
 }
 
@@ -237,7 +241,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         if (s.thorough || block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
-            const std::string model = smallest_segment_model(block, s.profile, cuts, which);
+            const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
             if (model.size() <= kMaxBlockPayload &&
                 consider(kSegmentModel, make_stored_record(kSegmentModel, job.flags, model)))
                 job.cut = std::move(cuts[which]);
@@ -327,7 +331,7 @@ void note_items(BlockJob& job) {
 
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (window.empty() || job.type != kSegmentModel) return;
-    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window);
+    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
     if (model.empty() || model.size() > kMaxBlockPayload) return;
     std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
     if (rec.size() < job.record.size()) job.record = std::move(rec);

@@ -228,9 +228,10 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             if (!format)
                 return make_error(Errc::unsupported,
                                   s.source + ": cannot tell the input format (use --format "
-                                             "freeman|points|steps)");
+                                             "freeman|points|steps|timed)");
         }
         if (!reader) {
+            s.timed = *format == InputFormat::timed;
             reader.emplace(*format, s.source, opt.block_steps);
             render = std::make_unique<BlockWriter>(*format);
             proof = std::make_unique<BlockWriter>(*format);

@@ -267,7 +267,8 @@ private:
                     r = read_chain_payload(*raw, hdr_.profile, hdr_.axes, expand_, block, counts, what);
                 } else if (b.type == kSegmentModel) {
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
-                                           window_.limit() ? &contribution->items : nullptr);
+                                           window_.limit() ? &contribution->items : nullptr,
+                                           hdr_.format == InputFormat::timed);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,

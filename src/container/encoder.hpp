@@ -31,6 +31,7 @@ struct EncoderSettings {
     bool thorough = false;     ///< try every encoding on every block
     bool aligned_cut = false;  ///< below thorough: the default-phase cut won on the first block's sample
     int window_log = 0;        ///< the frame's window (0: none)
+    bool timed = false;        ///< input format timed: segment-model phases predicted
 };
 
 /// One block in flight, from the reader to the ordered write.

@@ -17,9 +17,10 @@ namespace stepzip::stz {
 /// Payload of a segment-model block (block type 3) for `block` cut into
 /// `segs` under `p` (the same segments as write_chain_payload takes); with
 /// `window`, the models start from it (a block flagged kFlagWindow).
+/// `timed`: the frame's input format is timed (phases predicted, FORMAT.md).
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
-                                const WindowView* window = nullptr);
+                                const WindowView* window = nullptr, bool timed = false);
 
 /// Payload of a step-model block (block type 4); empty when the block is not
 /// two-axis (the step model codes Freeman directions only). `order` 1..4
@@ -35,7 +36,8 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 /// receives the block's segment items (its contribution to the window).
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
-                                const WindowView* window = nullptr, SegmentItems* items = nullptr);
+                                const WindowView* window = nullptr, SegmentItems* items = nullptr,
+                                bool timed = false);
 /// The decoder's step-model history of a frame with a window: the symbols of
 /// every block, from the window's start on, and the match table over them.
 /// A block flagged `window` decodes on it (O(1) per symbol) instead of

@@ -33,7 +33,8 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
         rec.type == kChains
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
         : rec.type == kSegmentModel
-            ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
+            ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
+                                 s.timed)
             : read_step_model(rec.payload, s.axes, true, job.decoded, job.counts, where, w);
     if (!r) {
         job.error = make_error(Errc::mismatch, r.error().message);

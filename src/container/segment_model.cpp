@@ -21,6 +21,7 @@
 #include "bench_hooks.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
+#include "timed_phase.hpp"
 
 namespace stepzip::stz {
 
@@ -235,8 +236,8 @@ private:
 template <class Io>
 class SegmentCoder {
 public:
-    SegmentCoder(Io& io, Profile p, int axes)
-        : io_(io), p_(p), axes_(axes), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
+    SegmentCoder(Io& io, Profile p, int axes, bool timed = false)
+        : io_(io), p_(p), axes_(axes), timed_(timed), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
         succ_.resize(1);  // succ_[0]: after no segment
     }
 
@@ -272,6 +273,7 @@ public:
     // Codes a chain start delta (encoder: `want`); returns it.
     Point start(const Point& want) {
         const std::uint32_t pred = predicted(kStart);
+        tphase_.reset();
         bool hit = false;
         io_.field(0);
         if (pred != kNoPrediction) hit = code_hit(kStart, want == starts_[pred & ~kStartTag]);
@@ -506,6 +508,7 @@ private:
     }
 
     void note_segment(const Segment& seg) {
+        if (timed_) tphase_.advance(p_, seg, axes_);
         const int lead = leading_axis(seg.delta, axes_);
         if (axes_ == 2) {
             unsigned neg = 0;
@@ -591,7 +594,7 @@ private:
         for (int k = 0; k < phase_count(p_, axes_); ++k) {
             const auto ab = *phase_arguments(p_, seg, axes_, k);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
-            const std::int64_t def = default_phase(p_, ab.first, ab.second);
+            const std::int64_t def = timed_ ? tphase_.predict(p_, seg, axes_, k) : default_phase(p_, ab.first, ab.second);
             if (r.hi - r.lo == 1) {
                 seg.phase[k] = r.lo;
                 continue;
@@ -607,6 +610,8 @@ private:
     Io& io_;
     Profile p_;
     int axes_;
+    bool timed_;           // phases predicted from the time since each axis moved
+    TimedPhase tphase_;
     std::unique_ptr<Contexts> ctx_;
     FlatMap table_;  // context (two history entries) -> next position
     std::vector<std::uint32_t> hist_;
@@ -688,7 +693,8 @@ namespace {
 // (EncIo; the bench hook's counting encoder).
 template <class Io>
 std::string segment_model_with(Io& io, const Block& block, Profile p,
-                               const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
+                               const std::vector<std::vector<Segment>>& segs, const WindowView* window,
+                               bool timed) {
     Counts c;
     c.nchains = block.chains.size();
     for (std::size_t i = 0; i < segs.size(); ++i)
@@ -717,7 +723,7 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
     }
     put_varint(out, grid);
     put_layout(out, block.layout);
-    SegmentCoder<Io> coder(io, p, block.axes);
+    SegmentCoder<Io> coder(io, p, block.axes, timed);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);
     Point ref{};
@@ -744,15 +750,16 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
 }  // namespace
 
 std::string write_segment_model(const Block& block, Profile p,
-                                const std::vector<std::vector<Segment>>& segs, const WindowView* window) {
+                                const std::vector<std::vector<Segment>>& segs, const WindowView* window,
+                                bool timed) {
     EncIo io;
-    return segment_model_with(io, block, p, segs, window);
+    return segment_model_with(io, block, p, segs, window, timed);
 }
 
 std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, Profile p,
                                                             const std::vector<std::vector<Segment>>& segs) {
     CostEncIo io;
-    segment_model_with(io, block, p, segs, nullptr);
+    segment_model_with(io, block, p, segs, nullptr, false);
     std::array<double, kSegmentModelFields> out{};
     std::copy_n(io.cost, kSegmentModelFields, out.begin());
     return out;
@@ -760,7 +767,7 @@ std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, 
 
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
-                                const WindowView* window, SegmentItems* items) {
+                                const WindowView* window, SegmentItems* items, bool timed) {
     Cursor cur(payload);
     Counts c;
     if (!cur.varint(c.nchains) || !cur.varint(c.nsegments) || !cur.varint(c.nsteps))
@@ -775,7 +782,7 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    SegmentCoder<DecIo> coder(io, p, axes);
+    SegmentCoder<DecIo> coder(io, p, axes, timed);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);
     if (items) *items = SegmentItems{};

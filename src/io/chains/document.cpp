@@ -82,6 +82,7 @@ std::string_view format_name(InputFormat f) noexcept {
         case InputFormat::freeman: return "freeman";
         case InputFormat::points: return "points";
         case InputFormat::steps: return "steps";
+        case InputFormat::timed: return "timed";
     }
     return "unknown";
 }
@@ -90,6 +91,7 @@ std::optional<InputFormat> parse_format(std::string_view name) noexcept {
     if (name == "freeman") return InputFormat::freeman;
     if (name == "points") return InputFormat::points;
     if (name == "steps") return InputFormat::steps;
+    if (name == "timed") return InputFormat::timed;
     return std::nullopt;
 }
 
@@ -102,6 +104,7 @@ std::unique_ptr<io::FormatParser> make_parser(InputFormat f, std::string source,
         case InputFormat::freeman: return io::make_freeman_parser(std::move(source), block_steps);
         case InputFormat::points: return io::make_points_parser(std::move(source), block_steps);
         case InputFormat::steps: return io::make_steps_parser(std::move(source), block_steps);
+        case InputFormat::timed: return io::make_timed_parser(std::move(source), block_steps);
     }
     return io::make_steps_parser(std::move(source), block_steps);
 }
@@ -111,6 +114,7 @@ std::unique_ptr<io::FormatRenderer> make_renderer(InputFormat f) {
         case InputFormat::freeman: return io::make_freeman_renderer();
         case InputFormat::points: return io::make_points_renderer();
         case InputFormat::steps: return io::make_steps_renderer();
+        case InputFormat::timed: return io::make_timed_renderer();
     }
     return io::make_steps_renderer();
 }
@@ -242,9 +246,19 @@ Result<std::string> write_chains(InputFormat format, const std::vector<Chain>& c
                                           where + "coordinate out of range");
                 }
                 break;
-            case InputFormat::steps: {
-                if (c.axes > 4)
-                    return make_error(Errc::invalid_argument, where + "steps holds at most four axes");
+            case InputFormat::steps:
+            case InputFormat::timed: {
+                const bool timed = format == InputFormat::timed;
+                if (c.axes > (timed ? 5 : 4))
+                    return make_error(Errc::invalid_argument,
+                                      where + (timed ? "timed holds time and at most four axes"
+                                                     : "steps holds at most four axes"));
+                if (timed)
+                    for (std::size_t k = 0; k < c.steps.size(); ++k)
+                        if (step_axis(c.steps[k], 0) != 1)
+                            return make_error(Errc::invalid_argument,
+                                              where + "step " + std::to_string(k + 1) +
+                                                  " does not advance time (axis 0) by one tick");
                 Point expect{};
                 if (i > 0) expect = chains[i - 1].end();
                 if (c.start != expect)
@@ -257,7 +271,7 @@ Result<std::string> write_chains(InputFormat format, const std::vector<Chain>& c
         }
     }
     std::string out;
-    if (format == InputFormat::steps) {
+    if (format == InputFormat::steps || format == InputFormat::timed) {
         // One chain: concatenate the steps.
         Block one;
         one.axes = 2;

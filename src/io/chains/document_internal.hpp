@@ -121,10 +121,32 @@ std::unique_ptr<FormatParser> make_steps_parser(std::string source, std::size_t 
 std::unique_ptr<FormatRenderer> make_freeman_renderer();
 std::unique_ptr<FormatRenderer> make_points_renderer();
 std::unique_ptr<FormatRenderer> make_steps_renderer();
+std::unique_ptr<FormatParser> make_timed_parser(std::string source, std::size_t block_steps);
+std::unique_ptr<FormatRenderer> make_timed_renderer();
+
+// ---- STEP/DIR logs (steps_format.cpp, timed_steps.cpp) -------------------------
+
+/// DIR bits of a tick byte (1, 3, 5, 7) <-> a 4-bit axis mask.
+inline std::uint8_t dir_to_mask(std::uint8_t d) {
+    return static_cast<std::uint8_t>(((d >> 1) & 1) | ((d >> 2) & 2) | ((d >> 3) & 4) | ((d >> 4) & 8));
+}
+inline std::uint8_t mask_to_dir(std::uint8_t m) {
+    return static_cast<std::uint8_t>(((m & 1) << 1) | ((m & 2) << 2) | ((m & 4) << 3) | ((m & 8) << 4));
+}
 
 /// Error for a layout that does not fit its block.
 inline Error corrupt(std::string_view format, std::string_view what) {
     return make_error(Errc::corrupt, std::string(format) + " layout: " + std::string(what));
+}
+
+/// The steps of a log block (one chain, starting at the origin unless it
+/// continues), or the `corrupt` error naming `format`.
+inline Result<const std::vector<Step>*> log_block_steps(const Block& b, std::string_view format) {
+    static const std::vector<Step> kNone;
+    if (b.chains.size() > 1) return corrupt(format, "a log block holds one chain");
+    if (!b.continues && !b.chains.empty() && b.chains[0].start != Point{})
+        return corrupt(format, "the chain does not start at the origin");
+    return b.chains.empty() ? &kNone : &b.chains[0].steps;
 }
 
 }  // namespace stepzip::io

@@ -29,14 +29,6 @@ constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
 constexpr std::uint8_t kStepBits = 0x55;
 constexpr std::uint8_t kDirBits = 0xAA;
 
-// DIR bits (1, 3, 5, 7) <-> a 4-bit axis mask.
-std::uint8_t dir_to_mask(std::uint8_t d) {
-    return static_cast<std::uint8_t>(((d >> 1) & 1) | ((d >> 2) & 2) | ((d >> 3) & 4) | ((d >> 4) & 8));
-}
-std::uint8_t mask_to_dir(std::uint8_t m) {
-    return static_cast<std::uint8_t>(((m & 1) << 1) | ((m & 2) << 2) | ((m & 4) << 3) | ((m & 8) << 4));
-}
-
 void put_count(std::string& out, std::uint8_t kind, std::uint64_t n) {
     if (n <= 63) {
         out.push_back(static_cast<char>(kind | (n - 1)));
@@ -209,11 +201,9 @@ public:
 };
 
 Result<void> StepsRenderer::write(const Block& b, std::string& out) {
-    if (b.chains.size() > 1) return corrupt("steps", "a steps block holds one chain");
-    if (!b.continues && !b.chains.empty() && b.chains[0].start != Point{})
-        return corrupt("steps", "the chain does not start at the origin");
-    static const std::vector<Step> kNone;
-    const std::vector<Step>& steps = b.chains.empty() ? kNone : b.chains[0].steps;
+    auto got = log_block_steps(b, "steps");
+    if (!got) return std::move(got).error();
+    const std::vector<Step>& steps = **got;
     for (const Step s : steps)
         if (!step_valid(s, 4)) return corrupt("steps", "a step outside four axes");
     std::uint8_t level = 0;

@@ -1,0 +1,258 @@
+#!/usr/bin/env python3
+"""Timed STEP/DIR streams from a trapezoid planner: a small motion controller
+of this project's own, for test and corpus data.
+
+A job (a seeded mix of polygons, circles drawn as short chords, spirals and
+travel moves; with --axes 3 a Z lift between shapes) is planned as a
+controller does it:
+
+- per move a trapezoid speed profile with the acceleration limited per axis
+  (the path acceleration is the smallest axis limit divided by that axis's
+  share of the move), the nominal speed limited per axis the same way;
+- junction speeds by the junction-deviation rule, then a backward and a
+  forward pass over the whole job (unlimited look-ahead);
+- a segment generator that cuts the profile into constant-rate stepper
+  segments of --segment-ms (a segment is stretched until it holds a step);
+- a stepper interrupt at the segment's rate in CPU cycles, a Bresenham line
+  per move over the axes (counters start at half the event count), with
+  AMASS-like smoothing: below rate thresholds the interrupt runs 2, 4 or 8
+  times faster and the Bresenham increments shrink accordingly;
+- a move's DIR levels are set in the interrupt that starts it (an axis the
+  move does not step is driven to 0), steps come from the next interrupt on.
+
+Output: one byte per tick of --tick-us, bit 2i = axis i stepped in the tick,
+bit 2i+1 = axis i DIR level (1 = negative) at the end of the tick; the
+stream runs from the tick of the first step to the tick of the last step.
+With --report FILE, a JSON list of the planned moves (steps, entry, nominal,
+exit speed in steps/s of the leading axis, acceleration in steps/s^2 of the
+leading axis) is written too.
+
+Usage: timed_stream.py [--axes 2|3] [--seed N] [--shapes N] [--steps-mm X]
+                       [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM]
+                       [--tick-us US] [--segment-ms MS] [--cpu-mhz MHZ]
+                       [--report FILE] > out.steps
+"""
+import argparse
+import json
+import math
+import random
+import sys
+
+
+def job(rng, shapes, axes):
+    """The path in mm: a list of (target point, feed mm/min or None for travel)."""
+    moves = []
+    pos = [0.0] * axes
+    for k in range(shapes):
+        cx, cy = rng.uniform(5, 115), rng.uniform(5, 75)
+        kind = k % 4
+        pts = []
+        if kind == 0:  # regular polygon
+            n, r, a0 = rng.randint(3, 8), rng.uniform(2, 12), rng.uniform(0, math.pi)
+            pts = [(cx + r * math.cos(a0 + 2 * math.pi * i / n), cy + r * math.sin(a0 + 2 * math.pi * i / n))
+                   for i in range(n + 1)]
+        elif kind == 1:  # circle as chords
+            n, r = rng.randint(24, 72), rng.uniform(3, 15)
+            pts = [(cx + r * math.cos(2 * math.pi * i / n), cy + r * math.sin(2 * math.pi * i / n))
+                   for i in range(n + 1)]
+        elif kind == 2:  # spiral
+            n, r = rng.randint(40, 90), rng.uniform(4, 14)
+            pts = [(cx + r * i / n * math.cos(0.3 * i), cy + r * i / n * math.sin(0.3 * i)) for i in range(n)]
+        else:  # a zig-zag hatch
+            n, w, h = rng.randint(3, 9), rng.uniform(5, 20), rng.uniform(0.5, 2)
+            for i in range(n):
+                y = cy + i * h
+                pts += [(cx, y), (cx + w, y)] if i % 2 == 0 else [(cx + w, y), (cx, y)]
+        feed = rng.choice([600, 1200, 1800, 2400])
+        if axes == 3:
+            moves.append(([pos[0], pos[1], 2.0], None))  # lift
+            moves.append(([pts[0][0], pts[0][1], 2.0], None))
+            moves.append(([pts[0][0], pts[0][1], 0.0], feed / 2))  # plunge
+            for p in pts[1:]:
+                moves.append(([p[0], p[1], 0.0], feed))
+            pos = [pts[-1][0], pts[-1][1], 0.0]
+        else:
+            moves.append(([pts[0][0], pts[0][1]], None))
+            for p in pts[1:]:
+                moves.append(([p[0], p[1]], feed))
+            pos = [pts[-1][0], pts[-1][1]]
+    moves.append(([0.0] * axes, None))
+    return moves
+
+
+def plan(moves, a):
+    """Move blocks in steps with trapezoid speeds in mm/s along the path."""
+    spm, rate, acc = a.steps_mm, a.rate, a.accel
+    blocks = []
+    cur = [0] * a.axes
+    prev_unit = None
+    for target, feed in moves:
+        tgt = [round(t * spm[i]) for i, t in enumerate(target)]
+        d = [tgt[i] - cur[i] for i in range(a.axes)]
+        if not any(d):
+            continue
+        mm = [d[i] / spm[i] for i in range(a.axes)]
+        length = math.sqrt(sum(v * v for v in mm))
+        unit = [v / length for v in mm]
+        nominal = min(rate[i] / 60 / abs(unit[i]) for i in range(a.axes) if unit[i] != 0)
+        if feed is not None:
+            nominal = min(nominal, feed / 60)
+        accel = min(acc[i] / abs(unit[i]) for i in range(a.axes) if unit[i] != 0)
+        vj = 0.0
+        if prev_unit is not None:
+            cos_t = -sum(prev_unit[i] * unit[i] for i in range(a.axes))
+            if cos_t < 0.999999:
+                cos_t = max(cos_t, -0.999999)
+                sin_half = math.sqrt(0.5 * (1 - cos_t))
+                vj = math.sqrt(accel * a.jd * sin_half / (1 - sin_half))
+        blocks.append(dict(d=d, length=length, nominal=nominal, accel=accel, vj_max=vj))
+        prev_unit = unit
+        cur = tgt
+    # Entry speeds: junction limit, reachable backward from a stop, then forward.
+    n = len(blocks)
+    for i, b in enumerate(blocks):
+        b['entry'] = min(b['vj_max'], b['nominal'], blocks[i - 1]['nominal'] if i else 0.0)
+    nxt = 0.0
+    for b in reversed(blocks):
+        b['entry'] = min(b['entry'], math.sqrt(nxt * nxt + 2 * b['accel'] * b['length']))
+        nxt = b['entry']
+    v = 0.0
+    for i, b in enumerate(blocks):
+        b['entry'] = v
+        nxt = blocks[i + 1]['entry'] if i + 1 < n else 0.0
+        b['exit'] = min(nxt, math.sqrt(v * v + 2 * b['accel'] * b['length']))
+        v = b['exit']
+    for b in blocks:
+        v0, v1, A, L = b['entry'], b['exit'], b['accel'], b['length']
+        acc_d = (b['nominal'] ** 2 - v0 * v0) / (2 * A)
+        dec_d = (b['nominal'] ** 2 - v1 * v1) / (2 * A)
+        if acc_d + dec_d > L:  # triangle: the peak speed where the ramps meet
+            acc_d = max(0.0, min(L, (L + (v1 * v1 - v0 * v0) / (2 * A)) / 2))
+            b['cruise'] = math.sqrt(v0 * v0 + 2 * A * acc_d)
+            dec_d = L - acc_d
+        else:
+            b['cruise'] = b['nominal']
+        b['acc_d'], b['dec_d'] = acc_d, dec_d
+    return blocks
+
+
+def position(b, t):
+    """Distance along the move at time t from its start, and the move's duration."""
+    v0, vc, v1, A = b['entry'], b['cruise'], b['exit'], b['accel']
+    t1 = (vc - v0) / A
+    t3 = (vc - v1) / A
+    cruise_d = b['length'] - b['acc_d'] - b['dec_d']
+    t2 = cruise_d / vc if vc > 0 else 0.0
+    total = t1 + t2 + t3
+    if t <= t1:
+        return v0 * t + 0.5 * A * t * t, total
+    if t <= t1 + t2:
+        return b['acc_d'] + vc * (t - t1), total
+    if t < total:
+        u = t - t1 - t2
+        return b['acc_d'] + cruise_d + vc * u - 0.5 * A * u * u, total
+    return b['length'], total
+
+
+def run(blocks, a):
+    cpu = a.cpu_mhz * 1e6
+    tick_cycles = a.tick_us * a.cpu_mhz
+    seg_s = a.segment_ms / 1000
+    amass_limits = [cpu / 8000, cpu / 4000, cpu / 2000]  # rate thresholds in cycles per step
+    events = []  # (cycle, step mask, dir levels)
+    cycle = 0
+    dirs = 0
+    for b in blocks:
+        d = b['d']
+        count = max(abs(v) for v in d)
+        new_dirs = sum(1 << i for i in range(a.axes) if d[i] < 0)
+        events.append((cycle, 0, new_dirs))  # DIR set in the interrupt that loads the move
+        dirs = new_dirs
+        counters = [count << 3 >> 1] * a.axes
+        done = 0
+        t = 0.0
+        total = position(b, 0.0)[1]
+        while done < count:
+            t_end = t + seg_s
+            while True:
+                s, _ = position(b, min(t_end, total))
+                target = min(count, int(s / b['length'] * count + 1e-9)) if t_end < total else count
+                if target > done or t_end >= total:
+                    break
+                t_end += seg_s
+            n = max(1, target - done)
+            period = max(1, int(round((min(t_end, total) - t) * cpu / n)))
+            level = sum(1 for lim in amass_limits if period > lim)
+            isr = period >> level
+            for _ in range(n << level):
+                cycle += isr
+                mask = 0
+                for i in range(a.axes):
+                    counters[i] += (abs(d[i]) << 3) >> level
+                    if counters[i] > (count << 3):
+                        counters[i] -= count << 3
+                        mask |= 1 << i
+                if mask:
+                    events.append((cycle, mask, dirs))
+            done += n
+            t = min(t_end, total)
+        cycle += isr
+    # Bin into ticks, from the first step's tick to the last step's tick.
+    steps = [e for e in events if e[1]]
+    first = int(steps[0][0] // tick_cycles)
+    last = int(steps[-1][0] // tick_cycles)
+    out = bytearray(last - first + 1)
+    level = 0
+    ei = 0
+    # DIR levels before the first step are those of the first move.
+    for tick in range(first, last + 1):
+        end = (tick + 1) * tick_cycles
+        while ei < len(events) and events[ei][0] < end:
+            c, mask, dl = events[ei]
+            level = dl
+            for i in range(a.axes):
+                if mask >> i & 1:
+                    if out[tick - first] >> (2 * i) & 1:
+                        sys.exit('two steps of one axis in one tick: use a shorter --tick-us')
+                    out[tick - first] |= 1 << (2 * i)
+            ei += 1
+        for i in range(a.axes):
+            if level >> i & 1:
+                out[tick - first] |= 2 << (2 * i)
+    return bytes(out)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('--axes', type=int, default=2, choices=[2, 3])
+    p.add_argument('--seed', type=int, default=1)
+    p.add_argument('--shapes', type=int, default=12)
+    p.add_argument('--steps-mm', type=float, nargs='+', default=[80.0])
+    p.add_argument('--rate', type=float, nargs='+', default=[6000.0], help='mm/min per axis')
+    p.add_argument('--accel', type=float, nargs='+', default=[500.0], help='mm/s^2 per axis')
+    p.add_argument('--jd', type=float, default=0.02, help='junction deviation, mm')
+    p.add_argument('--tick-us', type=float, default=20.0)
+    p.add_argument('--segment-ms', type=float, default=10.0)
+    p.add_argument('--cpu-mhz', type=int, default=16)
+    p.add_argument('--report')
+    a = p.parse_args()
+    for name in ('steps_mm', 'rate', 'accel'):
+        v = getattr(a, name)
+        setattr(a, name, (v * a.axes)[:a.axes] if len(v) == 1 else v[:a.axes])
+    rng = random.Random(a.seed)
+    blocks = plan(job(rng, a.shapes, a.axes), a)
+    data = run(blocks, a)
+    sys.stdout.buffer.write(data)
+    if a.report:
+        rep = []
+        for b in blocks:
+            lead = max(range(a.axes), key=lambda i: abs(b['d'][i]))
+            k = abs(b['d'][lead]) / b['length']  # lead-axis steps per mm of path
+            rep.append(dict(steps=b['d'], entry=b['entry'] * k, cruise=b['cruise'] * k,
+                            exit=b['exit'] * k, accel=b['accel'] * k))
+        with open(a.report, 'w') as f:
+            json.dump(rep, f, indent=0)
+
+
+if __name__ == '__main__':
+    main()
