@@ -129,7 +129,7 @@ Result<void> TimedRenderer::write(const Block& b, std::string& out) {
     std::uint8_t level = 0;
     if (!lc.done()) {
         std::uint8_t m = 0;
-        lc.byte(m);
+        lc.u8(m);
         if (m > 15) return corrupt("timed", "a bad DIR level");
         level = mask_to_dir(m);
     }
@@ -140,7 +140,7 @@ Result<void> TimedRenderer::write(const Block& b, std::string& out) {
         if (lc.done()) return true;
         std::uint64_t gap = 0;
         std::uint8_t m = 0;
-        if (!lc.varint(gap) || gap > kMaxGap || !lc.byte(m) || m == 0 || m > 15) return false;
+        if (!lc.varint(gap) || gap > kMaxGap || !lc.u8(m) || m == 0 || m > 15) return false;
         if (from != 0 && gap == 0) return false;
         next_flip = from + gap;
         flip = mask_to_dir(m);
