@@ -76,9 +76,9 @@ struct StepSize {
 Result<StepSize> parse_step_size(std::string_view text);
 
 /// Vector input formats.
-enum class VectorFormat : std::uint8_t { gcode, hpgl };
+enum class VectorFormat : std::uint8_t { gcode, hpgl, svg };
 
-/// "gcode" or "hpgl". Thread-safe.
+/// "gcode", "hpgl" or "svg". Thread-safe.
 std::string_view vector_format_name(VectorFormat f) noexcept;
 /// The format with that name, or nullopt. Thread-safe.
 std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
@@ -88,14 +88,23 @@ std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept;
 /// letters (a mnemonic; no G-code word has two) followed by a parameter, a
 /// separator or another mnemonic; G-code when the
 /// first word is a letter and a number (G0, N10, M3 ...) or the text starts
-/// with a comment or '%'. nullopt when neither fits. Thread-safe.
+/// with a comment or '%'; SVG when the text (after a byte-order mark and
+/// white space) starts with '<' and holds an "<svg" tag (looks_like_svg()).
+/// nullopt when none fits. Thread-safe.
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept;
 
 /// Options of the readers.
 struct VectorReadOptions {
     std::string source = "<input>";   ///< names the input in error messages
     std::optional<StepSize> step_size;  ///< absent: coordinates are steps
+    /// SVG: largest distance, in steps, of a flattened curve's chords from
+    /// the curve (before vertices are rounded to whole steps); > 0.
+    double tolerance = 0.5;
 };
+
+/// True when `head` starts (after a UTF-8 byte-order mark and white space)
+/// with '<' and holds an "<svg" start tag. Thread-safe.
+bool looks_like_svg(std::string_view head) noexcept;
 
 /// Reads G-code. Accepted (case-insensitive, spaces allowed between a letter
 /// and its number):
@@ -250,7 +259,32 @@ Result<std::string> step_dir_bytes(const SteppedJob& job);
 /// Complexity: O(bytes + drawn points).
 Result<Drawing> read_hpgl(std::string_view text, const VectorReadOptions& options = {});
 
-/// Dispatches to read_gcode / read_hpgl. Thread-safe.
+/// Reads the stroked geometry of SVG (docs/cli.md, "SVG input"): path
+/// (M L H V C S Q T A Z, absolute and relative, implicit repeats), line,
+/// polyline, polygon, rect (rounded corners too), circle, ellipse, inside
+/// svg, g, a and switch elements with their transforms (matrix, translate,
+/// scale, rotate, skewX, skewY, nested). Everything else (defs, style,
+/// text, use, symbol, images, metadata, display="none" ...) is skipped with
+/// its content; styles (stroke, fill) are not read: every shape is drawn.
+/// Each subpath and shape outline is one path; a top-level <g> that is an
+/// Inkscape layer (inkscape:groupmode="layer") or has an id is a pen
+/// (VectorPath::pen 1, 2, ... in document order; shapes outside them pen 1).
+/// Coordinates: the root's user units (the viewBox's units, its origin
+/// kept) with y negated, so y grows upwards as in `segment --to svg`; a
+/// user unit is a step, or with a step size a millimetre size from the
+/// root's width / height over its viewBox (CSS pixels of 1/96 inch without
+/// a viewBox). Curves are flattened in step space to chords within
+/// options.tolerance steps of the curve (Beziers by subdivision, arcs by
+/// angle); vertices are rounded to the nearest step, halves away from zero.
+/// Errors ("SOURCE:LINE:COLUMN: ..."): Errc::syntax for malformed XML, path
+/// data, numbers, transforms; Errc::unsupported for a DOCTYPE internal
+/// subset, a length in percent or in font units; Errc::limit for a
+/// coordinate beyond kMaxVectorCoord; Errc::invalid_argument for a
+/// tolerance that is not positive. Thread-safe. Complexity: O(bytes +
+/// flattened vertices).
+Result<Drawing> read_svg(std::string_view text, const VectorReadOptions& options = {});
+
+/// Dispatches to read_gcode / read_hpgl / read_svg. Thread-safe.
 Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
                              const VectorReadOptions& options = {});
 

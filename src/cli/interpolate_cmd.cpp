@@ -1,4 +1,4 @@
-// stepzip interpolate: vectors (G-code, HP-GL) -> unit-step chains, by the
+// stepzip interpolate: vectors (G-code, HP-GL, SVG) -> unit-step chains, by the
 // forward interpolators (SPEC §6). One chain per pen-down path.
 #include <boost/program_options.hpp>
 
@@ -30,16 +30,17 @@ constexpr std::size_t kMaxOutputSteps = std::size_t{1} << 28;
 int cmd_interpolate(const std::vector<std::string>& args) {
     po::options_description desc(
         "Usage: stepzip interpolate --profile P [IN | -] [OPTIONS]\n"
-        "Vectors (G-code or HP-GL) -> unit-step chains, one chain per pen-down path;\n"
+        "Vectors (G-code, HP-GL or SVG) -> unit-step chains, one chain per pen-down path;\n"
         "with --axes, a G-code machine job -> its STEP/DIR stream, every move stepped.\n"
         "Options");
     std::string profile_arg, from_arg, to_arg = "freeman", out_arg, step_arg, arc_arg,
                              line_arg = "profile", input, axes_arg, spm_arg;
+    double tolerance = 0.5;
     desc.add_options()
         ("help,h", "show this help")
         ("profile", po::value(&profile_arg), "forward interpolator for lines: eval4, eval8, "
                                              "patent, grbl, marlin (required)")
-        ("from", po::value(&from_arg), "input format: gcode or hpgl (default: detected)")
+        ("from", po::value(&from_arg), "input format: gcode, hpgl or svg (default: detected)")
         ("to", po::value(&to_arg), "output chain format: freeman (default), points, steps")
         ("output,o", po::value(&out_arg), "output file (default: standard output)")
         ("stdout,c", "write to standard output")
@@ -47,6 +48,9 @@ int cmd_interpolate(const std::vector<std::string>& args) {
         ("step-size", po::value(&step_arg),
          "millimetres per step (default: coordinates are steps); positions are rounded to "
          "the nearest step, halves away from zero")
+        ("tolerance", po::value(&tolerance),
+         "SVG: largest distance, in steps, of the chords of a flattened curve from the curve "
+         "(default 0.5); vertices are then rounded to whole steps")
         ("arc-method", po::value(&arc_arg),
          "G2/G3 interpolator: evaluation, accelerated, dda, prediction, recursion (default: "
          "evaluation for 4-connected profiles, accelerated for 8-connected)")
@@ -76,6 +80,9 @@ int cmd_interpolate(const std::vector<std::string>& args) {
     if (!to) return usage_error("interpolate: unknown output format '" + to_arg + "'");
     VectorReadOptions read_options;
     read_options.source = input_name(input);
+    if (!(tolerance > 0) || tolerance > 1e9)
+        return usage_error("interpolate: --tolerance must be a positive number of steps");
+    read_options.tolerance = tolerance;
     if (!step_arg.empty()) {
         auto s = parse_step_size(step_arg);
         if (!s) return usage_error("interpolate: " + s.error().message);
@@ -156,8 +163,10 @@ int cmd_interpolate(const std::vector<std::string>& args) {
         from = detect_vector_format(std::string_view(*data).substr(0, 4096));
         if (!from)
             return report(make_error(Errc::syntax, read_options.source +
-                                                       ": neither G-code nor HP-GL (use --from)"));
+                                                       ": neither G-code, HP-GL nor SVG (use --from)"));
     }
+    if (vm.count("tolerance") && *from != VectorFormat::svg)
+        return usage_error("interpolate: --tolerance is for SVG input");
     auto drawing = read_vectors(*from, *data, read_options);
     if (!drawing) return report(drawing.error());
 

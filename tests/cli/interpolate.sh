@@ -85,7 +85,7 @@ printf 'G0 X10 Y0\nG3 X0 Y13 I-10 J0\n' >offcircle.gcode
 expect_err "arc off its circle" 1 "offcircle.gcode:2:1: " "$BIN" interpolate --profile eval4 offcircle.gcode
 expect_err "missing input" 1 "nonexistent.gcode: " "$BIN" interpolate --profile eval4 nonexistent.gcode
 printf 'hello\n' >hello.txt
-expect_err "undetected" 1 "hello.txt: neither G-code nor HP-GL" "$BIN" interpolate --profile eval4 hello.txt
+expect_err "undetected" 1 "hello.txt: neither G-code, HP-GL nor SVG" "$BIN" interpolate --profile eval4 hello.txt
 ls -A | grep -q '\.stepzip-' && fail "temporary file left behind: $(ls -A)"
 
 # usage errors: exit 2

@@ -146,16 +146,18 @@ Result<StepSize> parse_step_size(std::string_view text) {
 }
 
 std::string_view vector_format_name(VectorFormat f) noexcept {
-    return f == VectorFormat::gcode ? "gcode" : "hpgl";
+    return f == VectorFormat::gcode ? "gcode" : f == VectorFormat::hpgl ? "hpgl" : "svg";
 }
 
 std::optional<VectorFormat> parse_vector_format(std::string_view name) noexcept {
     if (name == "gcode") return VectorFormat::gcode;
     if (name == "hpgl") return VectorFormat::hpgl;
+    if (name == "svg") return VectorFormat::svg;
     return std::nullopt;
 }
 
 std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept {
+    if (looks_like_svg(head)) return VectorFormat::svg;
     std::size_t i = 0;
     auto skip_space = [&] {  // and ETX, which some drivers send before a plot
         while (i < head.size() && (std::isspace(static_cast<unsigned char>(head[i])) || head[i] == '\x03'))
@@ -196,7 +198,12 @@ std::optional<VectorFormat> detect_vector_format(std::string_view head) noexcept
 
 Result<Drawing> read_vectors(VectorFormat format, std::string_view text,
                              const VectorReadOptions& options) {
-    return format == VectorFormat::gcode ? read_gcode(text, options) : read_hpgl(text, options);
+    switch (format) {
+    case VectorFormat::gcode: return read_gcode(text, options);
+    case VectorFormat::hpgl: return read_hpgl(text, options);
+    case VectorFormat::svg: break;
+    }
+    return read_svg(text, options);
 }
 
 }  // namespace stepzip
