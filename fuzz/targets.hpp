@@ -182,19 +182,20 @@ inline std::string steps_target(const std::uint8_t* d, std::size_t n) {
     return chain_file_target(InputFormat::steps, d, n);
 }
 
-/// G-code and HP-GL readers: the first byte picks the format and the step
-/// size; the reader returns a drawing or a documented error; every
-/// coordinate it returns is within kMaxVectorCoord; a drawing written back
-/// as G-code (and HP-GL when it has no arcs) reads back as the same drawing.
+/// G-code, HP-GL and SVG readers: the first byte picks G-code or HP-GL and
+/// the step size (text detected as SVG is read as SVG); the reader returns
+/// a drawing or a documented error; every coordinate it returns is within
+/// kMaxVectorCoord; a drawing written back as G-code (and HP-GL and plain
+/// SVG when it has no arcs) reads back as the same drawing (SVG: pens 1).
 inline std::string vectors_target(const std::uint8_t* data, std::size_t size) {
     if (size < 1) return {};
-    const VectorFormat format = (data[0] & 1) ? VectorFormat::hpgl : VectorFormat::gcode;
+    VectorFormat format = (data[0] & 1) ? VectorFormat::hpgl : VectorFormat::gcode;
     VectorReadOptions options;
     options.source = "fuzz";
     static constexpr const char* kSizes[] = {"0.0125", "1", "0.000000000001", "1000000"};
     if (data[0] & 2) options.step_size = *parse_step_size(kSizes[(data[0] >> 2) & 3]);
     const std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
-    (void)detect_vector_format(text);
+    if (detect_vector_format(text) == VectorFormat::svg) format = VectorFormat::svg;
     auto drawing = read_vectors(format, text, options);
     if (!drawing) {
         if (!reader_error(drawing.error().code)) return "vectors: undocumented error " + describe(drawing.error());
@@ -223,6 +224,13 @@ inline std::string vectors_target(const std::uint8_t* data, std::size_t size) {
         auto back = read_hpgl(*hpgl, plain);
         if (!back) return "HP-GL written from a drawing does not read back: " + describe(back.error());
         if (*back != *drawing) return "HP-GL written from a drawing reads back differently";
+        auto svg = write_svg_paths(*drawing);
+        if (!svg) return "write_svg_paths refuses a drawing without arcs: " + describe(svg.error());
+        auto svg_back = read_svg(*svg, plain);
+        if (!svg_back) return "SVG written from a drawing does not read back: " + describe(svg_back.error());
+        Drawing one_pen = *drawing;
+        for (VectorPath& p : one_pen) p.pen = 1;
+        if (*svg_back != one_pen) return "SVG written from a drawing reads back differently";
     }
     return {};
 }
