@@ -292,6 +292,7 @@ TEST(SvgIn, ErrorsNameLineAndColumn) {
     EXPECT_EQ(error_of("<svg>&nbsp;</svg>"), "t.svg:1:6: unknown entity '&nbsp;'");
     EXPECT_EQ(error_of("<svg a='1' a='2'/>"), "t.svg:1:12: repeated attribute 'a'");
     EXPECT_EQ(error_of("<svg></svg><g/>"), "t.svg:1:12: content after the root element");
+    EXPECT_EQ(error_of("<svg/>\n<!-- ok --><g/>"), "t.svg:2:12: content after the root element");
     EXPECT_EQ(error_of("<html/>"), "t.svg:1:1: the root element is 'html', not 'svg'");
     EXPECT_EQ(error_of("<svg><!-- x </svg>"), "t.svg:1:6: unterminated comment");
     EXPECT_EQ(error_of("<svg><polygon points='1 2 3'/></svg>"), "t.svg:1:23: odd number of coordinates");

@@ -858,9 +858,7 @@ Result<Drawing> Reader::run() {
                 return fail({Errc::syntax, el.offset, "the root element is '" + el.name + "', not 'svg'"});
             seen_root = true;
             if (auto r = root(el); !r) return fail(r.error());
-            Frame f{root_map_, false, 1, el.name};
-            if (el.self_closing) break;
-            stack.push_back(f);
+            if (!el.self_closing) stack.push_back(Frame{root_map_, false, 1, el.name});
             continue;
         }
         if (stack.empty())
