@@ -4,6 +4,8 @@
 // Not installed; nothing here is part of the public API.
 #pragma once
 
+#include <algorithm>
+
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -125,6 +127,41 @@ std::unique_ptr<FormatParser> make_timed_parser(std::string source, std::size_t 
 std::unique_ptr<FormatRenderer> make_timed_renderer();
 
 // ---- STEP/DIR logs (steps_format.cpp, timed_steps.cpp) -------------------------
+
+inline constexpr std::uint8_t kStepBits = 0x55;  // STEP bit of axis i: bit 2i
+inline constexpr std::uint8_t kDirBits = 0xAA;   // DIR bit of axis i: bit 2i + 1
+
+/// A tick byte read against the DIR level of the tick before it.
+struct Tick {
+    std::uint8_t stepping;     // STEP bits
+    std::uint8_t moving_dirs;  // the DIR bits' places of the stepping axes
+    std::uint8_t dirs;         // DIR bits
+    std::uint8_t flip;         // DIR bits that changed on axes that do not step
+};
+inline Tick read_tick(std::uint8_t b, std::uint8_t level) {
+    Tick t;
+    t.stepping = b & kStepBits;
+    t.moving_dirs = static_cast<std::uint8_t>(t.stepping << 1);
+    t.dirs = b & kDirBits;
+    t.flip = static_cast<std::uint8_t>((t.dirs ^ level) & ~t.moving_dirs & kDirBits);
+    return t;
+}
+
+/// The tick byte of `s` (STEP bits and the DIR bits of the stepping axes)
+/// after DIR level `level`, with the idle axes' DIR bits in `flip` changed.
+inline std::uint8_t tick_byte(std::uint8_t s, std::uint8_t level, std::uint8_t flip) {
+    const auto moving_dirs = static_cast<std::uint8_t>((s & kStepBits) << 1);
+    return static_cast<std::uint8_t>(s | ((level ^ flip) & ~moving_dirs & kDirBits));
+}
+
+/// Axes of a log whose axes with a step so far have STEP bits `seen`: at
+/// least two.
+inline int log_axes(std::uint8_t seen) {
+    int a = 2;
+    for (int i = 0; i < 4; ++i)
+        if (seen & (1u << (2 * i))) a = std::max(a, i + 1);
+    return a;
+}
 
 /// DIR bits of a tick byte (1, 3, 5, 7) <-> a 4-bit axis mask.
 inline std::uint8_t dir_to_mask(std::uint8_t d) {

@@ -26,8 +26,6 @@ enum : std::uint8_t {
 // Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
 constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
 
-constexpr std::uint8_t kStepBits = 0x55;
-constexpr std::uint8_t kDirBits = 0xAA;
 
 void put_count(std::string& out, std::uint8_t kind, std::uint64_t n) {
     if (n <= 63) {
@@ -110,10 +108,7 @@ private:
     Block take_block(bool open);
     void cut(bool open);
     int axes() const {
-        int a = 2;
-        for (int i = 0; i < 4; ++i)
-            if (seen_ & (1u << (2 * i))) a = std::max(a, i + 1);
-        return a;
+        return log_axes(seen_);
     }
 
     std::string source_;
@@ -163,10 +158,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     if (steps->capacity() == 0) steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
     for (const char ch : data) {
         const auto b = static_cast<std::uint8_t>(ch);
-        const std::uint8_t stepping = b & kStepBits;
-        const auto moving_dirs = static_cast<std::uint8_t>(stepping << 1);
-        const std::uint8_t dirs = b & kDirBits;
-        const auto flip = static_cast<std::uint8_t>((dirs ^ level_) & ~moving_dirs & kDirBits);
+        const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
         if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_.size() >= cap_) {
             cut(true);
             steps = &blk_.chains.back().steps;
@@ -212,9 +204,8 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
     auto emit_steps = [&](std::uint64_t n) {
         for (std::uint64_t j = 0; j < n; ++j) {
             const auto s = static_cast<std::uint8_t>(steps[k++]);
-            const auto moving_dirs = static_cast<std::uint8_t>((s & kStepBits) << 1);
-            if (flip & moving_dirs) return false;
-            const auto byte = static_cast<std::uint8_t>(s | ((level ^ flip) & ~moving_dirs & kDirBits));
+            if (flip & ((s & kStepBits) << 1)) return false;
+            const std::uint8_t byte = tick_byte(s, level, flip);
             out.push_back(static_cast<char>(byte));
             level = byte & kDirBits;
             flip = 0;

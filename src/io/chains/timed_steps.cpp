@@ -20,8 +20,6 @@
 namespace stepzip::io {
 namespace {
 
-constexpr std::uint8_t kStepBits = 0x55;
-constexpr std::uint8_t kDirBits = 0xAA;
 constexpr std::uint64_t kMaxGap = std::uint64_t{1} << 40;
 
 /// The chain step of a tick byte: time +1, the stepping axes with their DIR.
@@ -48,10 +46,7 @@ private:
         since_ = 0;
     }
     int axes() const {
-        int a = 2;
-        for (int i = 0; i < 4; ++i)
-            if (seen_ & (1u << (2 * i))) a = std::max(a, i + 1);
-        return a + 1;
+        return log_axes(seen_) + 1;  // time, then the log's axes
     }
     void finish(bool open) {
         Block b = std::move(blk_);
@@ -90,10 +85,7 @@ Result<void> TimedParser::feed(std::string_view data, bool last) {
             steps = &blk_.chains.back().steps;
         }
         if (steps->capacity() == 0) steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
-        const std::uint8_t stepping = b & kStepBits;
-        const auto moving_dirs = static_cast<std::uint8_t>(stepping << 1);
-        const std::uint8_t dirs = b & kDirBits;
-        const auto flip = static_cast<std::uint8_t>((dirs ^ level_) & ~moving_dirs & kDirBits);
+        const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
         if (flip != 0) {
             if (layout_.empty()) layout_.push_back(0);
             put_varint(layout_, since_);
@@ -157,7 +149,7 @@ Result<void> TimedRenderer::write(const Block& b, std::string& out) {
             if (f & moving_dirs) return corrupt("timed", "a flip on a stepping axis");
             if (!read_flip(k)) return corrupt("timed", "a bad flip");
         }
-        const auto byte = static_cast<std::uint8_t>(s | ((level ^ f) & ~moving_dirs & kDirBits));
+        const std::uint8_t byte = tick_byte(s, level, f);
         out.push_back(static_cast<char>(byte));
         level = byte & kDirBits;
     }
