@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "stepzip/chain.hpp"
@@ -28,5 +29,61 @@ struct AxisMotion {
 /// smaller values). Result index i is axis i; index 0 (time) is empty.
 /// Thread-safe. Complexity: O(steps).
 std::vector<AxisMotion> estimate_axis_motion(const Chain& timed_chain, double tick_seconds);
+
+/// The path of a timed chain: its ticks that move an axis, with time
+/// dropped (a chain on axes 1.., starting at the timed chain's start on
+/// those axes), and the tick (index in the timed chain) of each of its steps.
+struct TimedPath {
+    Chain path;
+    std::vector<std::uint64_t> ticks;  ///< ticks[k]: the tick of path.steps[k]
+};
+/// Thread-safe. Complexity: O(ticks).
+TimedPath timed_path(const Chain& timed_chain);
+
+/// Speeds of one straight move read out of the ticks of its steps, along
+/// the move's path: `length` is its Euclidean length in steps, and the
+/// path position after the k-th of the n steps of its leading axis is
+/// (k + 1) · length / n. Speeds in steps/s along the path, acceleration in
+/// steps/s^2.
+struct MoveSpeeds {
+    double entry = 0;         ///< speed where the move starts
+    double cruise = 0;        ///< fastest speed held (over a window of steps)
+    double exit = 0;          ///< speed where the move ends
+    double acceleration = 0;  ///< of the ramps (0 when neither ramp has 6 steps)
+    std::uint64_t ramp_steps = 0;  ///< leading-axis steps the acceleration was fitted on
+};
+
+/// Reads a move's speeds from `lead_ticks`, the ticks of the steps of its
+/// leading axis (strictly increasing), `length` (> 0) and the tick length.
+/// The local speed at step k is taken over a window of w steps on either
+/// side (w = n / 16, clamped to 2..16); the cruise speed is the largest; the
+/// ramp up runs from the first step to the first whose local speed reaches
+/// 97 % of it, the ramp down from the last such step to the end. A ramp of
+/// at least 6 steps is fitted with a parabola in time by least squares
+/// (step times at the middle of their tick); its curvature is its
+/// acceleration and the entry (exit) speed is the parabola's speed where it
+/// passes position 0 (length), or 0 where it does not reach it (a start
+/// from rest). Without a ramp the entry (exit) speed is the local speed of
+/// the first (last) step. `acceleration` is the mean of the ramps' values,
+/// weighted by their steps. Fewer than 2 steps: every speed 0.
+/// Thread-safe. Complexity: O(n).
+MoveSpeeds move_speeds(std::span<const std::uint64_t> lead_ticks, double length, double tick_seconds);
+
+/// One straight move of a timed chain's path.
+struct TimedMove {
+    std::size_t first = 0, last = 0;  ///< its steps: path.steps[first .. last] (TimedPath)
+    std::uint64_t first_tick = 0, last_tick = 0;  ///< ticks of its first and last step
+    Point delta{};                    ///< where it goes, on the path's axes
+    double length = 0;                ///< Euclidean, in steps
+    MoveSpeeds speeds;                ///< move_speeds() on the ticks of its leading axis
+};
+
+/// The moves of a timed chain: its path (timed_path()) cut into straight
+/// stretches that stay within `tolerance` steps of the line between their
+/// end points (Douglas-Peucker over the path's points; a controller's
+/// multi-axis smoothing lets the steps of a straight move wander from the
+/// exact digital line by a step, so exact segments cut moves apart), each
+/// with its speeds. Thread-safe. Complexity: O(n log n) typical, O(n^2) worst.
+std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds, double tolerance = 1.0);
 
 }  // namespace stepzip

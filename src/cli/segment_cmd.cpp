@@ -15,6 +15,7 @@
 #include "stepzip/document.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segmenter.hpp"
+#include "stepzip/timed.hpp"
 #include "stepzip/vectors.hpp"
 
 namespace po = boost::program_options;
@@ -63,6 +64,80 @@ Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profil
     return out;
 }
 
+// The drawing of a timed log's moves (two-axis paths): per chain with
+// steps one path from its start through the end of each move; with `feed`,
+// each move's F is its cruise speed (steps/min, or mm/min with a step size).
+Drawing timed_drawing(const std::vector<TimedPath>& paths, const std::vector<std::vector<TimedMove>>& moves,
+                      bool feed, const std::optional<StepSize>& step_size) {
+    const double per_step = step_size ? static_cast<double>(step_size->mm_e12) * 1e-12 : 1.0;
+    Drawing d;
+    for (std::size_t c = 0; c < paths.size(); ++c) {
+        if (moves[c].empty()) continue;
+        VectorPath vp;
+        vp.x0 = paths[c].path.start[0];
+        vp.y0 = paths[c].path.start[1];
+        std::int64_t x = vp.x0, y = vp.y0;
+        for (const TimedMove& m : moves[c]) {
+            VectorMove mv;
+            x += m.delta[0];
+            y += m.delta[1];
+            mv.x = x;
+            mv.y = y;
+            if (feed) mv.feed = m.speeds.cruise * 60 * per_step;
+            vp.moves.push_back(mv);
+        }
+        d.push_back(std::move(vp));
+    }
+    return d;
+}
+
+std::string json_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f", v);
+    return buf;
+}
+
+// JSON of the moves of timed chains: per chain its path's start and per
+// move its steps, ticks, totals, length and speeds (docs/cli.md).
+std::string write_timed_json(const std::vector<TimedPath>& paths,
+                             const std::vector<std::vector<TimedMove>>& moves, double tick_us) {
+    std::string out = "{\"tick_us\":" + json_number(tick_us) + ",\"units\":\"steps, steps/s and steps/s^2 along the path\",\"chains\":[";
+    for (std::size_t c = 0; c < paths.size(); ++c) {
+        const Chain& path = paths[c].path;
+        out += c ? ",\n{" : "\n{";
+        out += "\"start\":[";
+        for (int i = 0; i < path.axes; ++i) out += (i ? "," : "") + std::to_string(path.start[static_cast<std::size_t>(i)]);
+        out += "],\"steps\":" + std::to_string(path.steps.size()) + ",\"moves\":[";
+        for (std::size_t k = 0; k < moves[c].size(); ++k) {
+            const TimedMove& m = moves[c][k];
+            out += k ? ",\n" : "\n";
+            out += "{\"delta\":[";
+            for (int i = 0; i < path.axes; ++i) out += (i ? "," : "") + std::to_string(m.delta[static_cast<std::size_t>(i)]);
+            out += "],\"ticks\":[" + std::to_string(m.first_tick) + "," + std::to_string(m.last_tick) + "]";
+            out += ",\"length\":" + json_number(m.length);
+            out += ",\"entry\":" + json_number(m.speeds.entry);
+            out += ",\"cruise\":" + json_number(m.speeds.cruise);
+            out += ",\"exit\":" + json_number(m.speeds.exit);
+            out += ",\"acceleration\":" + json_number(m.speeds.acceleration);
+            out += ",\"ramp_steps\":" + std::to_string(m.speeds.ramp_steps) + "}";
+        }
+        out += "]}";
+    }
+    out += "]}\n";
+    return out;
+}
+
+// Writes `text` to the output (or reports its error, naming the source); the exit code.
+int write_text(const Result<std::string>& text, const std::string& source, const std::string& out_path,
+               bool force) {
+    if (!text) return report(make_error(text.error().code, source + ": " + text.error().message));
+    auto out = OutputFile::open(out_path, force);
+    if (!out) return report(out.error());
+    if (auto r = out->write(*text); !r) return report(r.error());
+    if (auto r = out->commit(); !r) return report(r.error());
+    return 0;
+}
+
 }  // namespace
 
 int cmd_segment(const std::vector<std::string>& args) {
@@ -71,12 +146,12 @@ int cmd_segment(const std::vector<std::string>& args) {
         "Unit-step chains -> vectors by reverse interpolation.\n"
         "Options");
     std::string input, format_arg, segmenter_arg = "greedy", profile_arg, to_arg, out_arg,
-                                   step_arg, feed_arg, feed_factor_arg = "seed";
+                                   step_arg, feed_arg, feed_factor_arg = "seed", tick_arg;
     desc.add_options()
         ("help,h", "show this help")
         ("to", po::value(&to_arg), "output: gcode, hpgl, svg or json (required)")
         ("format", po::value(&format_arg),
-         "input chain format: freeman, points, steps (default: detected)")
+         "input chain format: freeman, points, steps, timed (default: detected)")
         ("segmenter", po::value(&segmenter_arg),
          "greedy (default), optimal, or patent (SU 1089551 approximation mode: end points "
          "only, its deviation reported)")
@@ -90,7 +165,11 @@ int cmd_segment(const std::vector<std::string>& args) {
         ("step-size", po::value(&step_arg), "G-code: write millimetres at this many mm per step")
         ("feed", po::value(&feed_arg),
          "G-code: F words from the feed-rate block at V steps per second (each segment's "
-         "length over the time its steps take; steps/min, or mm/min with --step-size)")
+         "length over the time its steps take; steps/min, or mm/min with --step-size); "
+         "'timed' with --format timed: each move's cruise speed read out of the log")
+        ("tick-us", po::value(&tick_arg),
+         "--format timed: the log's tick in microseconds; vectors then draw the path "
+         "(time dropped) and JSON lists its moves with their speeds")
         ("feed-factor", po::value(&feed_factor_arg),
          "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
          "(x sqrt 2)")
@@ -125,7 +204,23 @@ int cmd_segment(const std::vector<std::string>& args) {
         gcode_options.step_size = *s;
     }
     std::optional<FeedOptions> feed;
-    if (!feed_arg.empty()) {
+    const bool timed = format == InputFormat::timed;
+    double tick_us = 0;
+    if (!tick_arg.empty()) {
+        if (!timed) return usage_error("segment: --tick-us needs --format timed");
+        char* end = nullptr;
+        tick_us = std::strtod(tick_arg.c_str(), &end);
+        if (end == tick_arg.c_str() || *end != '\0' || !(tick_us > 0) || !std::isfinite(tick_us))
+            return usage_error("segment: --tick-us wants a positive number of microseconds, not '" +
+                               tick_arg + "'");
+    } else if (timed) {
+        return usage_error("segment: --format timed needs --tick-us");
+    }
+    const bool timed_feed = feed_arg == "timed";
+    if (timed_feed) {
+        if (*to != VectorOut::gcode) return usage_error("segment: --feed needs --to gcode");
+        if (!timed) return usage_error("segment: --feed timed needs --format timed");
+    } else if (!feed_arg.empty()) {
         if (*to != VectorOut::gcode) return usage_error("segment: --feed needs --to gcode");
         char* end = nullptr;
         const double v = std::strtod(feed_arg.c_str(), &end);
@@ -161,6 +256,33 @@ int cmd_segment(const std::vector<std::string>& args) {
     }
     auto chains = read_chains(*format, *data, source);
     if (!chains) return report(chains.error());
+    // A timed log: its moves are read out; the rest works on its path.
+    std::vector<TimedPath> paths;
+    std::vector<std::vector<TimedMove>> moves;
+    if (timed) {
+        for (const Chain& c : *chains) {
+            paths.push_back(timed_path(c));
+            moves.push_back(timed_moves(paths.back(), tick_us * 1e-6));
+        }
+        if (*to == VectorOut::json) return write_text(write_timed_json(paths, moves, tick_us), source, out_path, force);
+        if (paths.empty() || paths.front().path.axes != 2)
+            return report(make_error(Errc::unsupported, source + ": vectors of a timed log need two axes"));
+        const Drawing drawing = timed_drawing(paths, moves, timed_feed, gcode_options.step_size);
+        const std::string comment = "moves read out of a timed log (" + json_number(tick_us) +
+                                    " us ticks): straight within 1 step of its path" +
+                                    (timed_feed ? "; F: each move's cruise speed" : "");
+        Result<std::string> text = std::string();
+        switch (*to) {
+            case VectorOut::gcode:
+                gcode_options.comment = comment;
+                text = write_gcode(drawing, gcode_options);
+                break;
+            case VectorOut::hpgl: text = write_hpgl(drawing, comment); break;
+            case VectorOut::svg: text = write_svg_paths(drawing, comment); break;
+            case VectorOut::json: break;
+        }
+        return write_text(text, source, out_path, force);
+    }
 
     // Cut them; "auto" keeps the profile with the fewest segments.
     const bool vectors = *to != VectorOut::json;
@@ -217,6 +339,7 @@ int cmd_segment(const std::vector<std::string>& args) {
                             : segments_to_drawing(cut_chains);
         if (!drawing)
             return report(make_error(drawing.error().code, source + ": " + drawing.error().message));
+
         // Pens named by "# pen N" comments of the chain file.
         if (*format != InputFormat::steps) {
             const std::vector<int> pens = chain_pens(*format, *data);
@@ -256,13 +379,7 @@ int cmd_segment(const std::vector<std::string>& args) {
             case VectorOut::json: break;
         }
     }
-    if (!text) return report(make_error(text.error().code, source + ": " + text.error().message));
-
-    auto out = OutputFile::open(out_path, force);
-    if (!out) return report(out.error());
-    if (auto r = out->write(*text); !r) return report(r.error());
-    if (auto r = out->commit(); !r) return report(r.error());
-    return 0;
+    return write_text(text, source, out_path, force);
 }
 
 }  // namespace stepzip::cli

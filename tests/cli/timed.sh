@@ -31,5 +31,25 @@ if "$stepzip" compress -q -f --format timing "$f" -o "$work/u.stz" 2>"$work/err"
 fi
 grep -q "timing" "$work/err" || { echo "FAIL error does not name the format"; fail=1; }
 [ ! -e "$work/u.stz" ] || { echo "FAIL output written on a usage error"; fail=1; }
+# segment: the moves of the 2-axis stream (planned at 500 mm/s^2, 80 steps/mm:
+# 40000 steps/s^2 and at most 8000 steps/s on the leading axis; its first
+# move is 2567,4337 steps from rest to rest at the rate limit).
+"$stepzip" segment --format timed --tick-us 30 --to json "$f" -o "$work/m.json" -f
+first=$(grep -m1 '"delta":\[2567,4337\]' "$work/m.json" || true)
+[ -n "$first" ] || { echo "FAIL segment json: first move not found"; fail=1; }
+lead_of() { sed -n "s/.*\"$1\":\([0-9.]*\).*/\1/p" <<<"$first" | awk '{printf "%.0f", $1 * 4337 / 5039.75}'; }
+cruise=$(lead_of cruise); acc=$(lead_of acceleration); entry=$(lead_of entry)
+[ "${cruise:-0}" -ge 7760 ] && [ "${cruise:-0}" -le 8240 ] || { echo "FAIL cruise $cruise not 8000 +-3%"; fail=1; }
+[ "${acc:-0}" -ge 38000 ] && [ "${acc:-0}" -le 42000 ] || { echo "FAIL acceleration $acc not 40000 +-5%"; fail=1; }
+[ "${entry:-1}" -le 240 ] || { echo "FAIL entry $entry not from rest"; fail=1; }
+"$stepzip" segment --format timed --tick-us 30 --to gcode --feed timed --step-size 0.0125 "$f" -o "$work/m.nc" -f
+# F of the first move: 8000 steps/s on y, 9296 along the path, 6972 mm/min at 0.0125 mm/step.
+feed=$(sed -n 's/^G1 X32.0875 Y54.2125 F\([0-9]*\).*/\1/p' "$work/m.nc" | head -n 1)
+[ "${feed:-0}" -ge 6763 ] && [ "${feed:-0}" -le 7181 ] || { echo "FAIL gcode: first move's F $feed not 6972 +-3%"; fail=1; }
+if "$stepzip" segment --format timed --to json "$f" -o "$work/n.json" 2>"$work/err"; then
+  echo "FAIL --format timed without --tick-us accepted"; fail=1
+fi
+grep -q -- "--tick-us" "$work/err" || { echo "FAIL error does not name --tick-us"; fail=1; }
+[ ! -e "$work/n.json" ] || { echo "FAIL output written on a usage error"; fail=1; }
 [ $fail = 0 ] && echo "timed: ok"
 exit $fail

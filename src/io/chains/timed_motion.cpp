@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 
 #include "stepzip/timed.hpp"
 
@@ -14,29 +16,39 @@ constexpr std::size_t kWindow = 128;
 constexpr double kMaxRms = 0.6;
 constexpr double kQuantile = 0.9;
 
-// Least-squares parabola k = c0 + c1·u + c2·u² through (u_j, j); false when singular.
-bool fit_parabola(const std::array<double, kWindow>& u, std::array<double, 3>& c, double& rms) {
+// Least-squares parabola s = c0 + c1·t + c2·t² through (t[k], s[k]), k in [a, b); false when singular.
+bool fit_quadratic(const std::vector<double>& t, const std::vector<double>& s, std::size_t a, std::size_t b,
+                   std::array<double, 3>& c) {
     double m[3][4] = {};
-    for (std::size_t j = 0; j < kWindow; ++j) {
-        const double p[3] = {1.0, u[j], u[j] * u[j]};
+    for (std::size_t k = a; k < b; ++k) {
+        const double p[3] = {1.0, t[k], t[k] * t[k]};
         for (int r = 0; r < 3; ++r) {
-            for (int k = 0; k < 3; ++k) m[r][k] += p[r] * p[k];
-            m[r][3] += p[r] * static_cast<double>(j);
+            for (int q = 0; q < 3; ++q) m[r][q] += p[r] * p[q];
+            m[r][3] += p[r] * s[k];
         }
     }
-    for (int col = 0; col < 3; ++col) {  // Gauss-Jordan with partial pivoting
+    for (int col = 0; col < 3; ++col) {
         int piv = col;
         for (int r = col + 1; r < 3; ++r)
             if (std::fabs(m[r][col]) > std::fabs(m[piv][col])) piv = r;
         if (std::fabs(m[piv][col]) < 1e-300) return false;
-        for (int k = 0; k < 4; ++k) std::swap(m[col][k], m[piv][k]);
+        for (int q = 0; q < 4; ++q) std::swap(m[col][q], m[piv][q]);
         for (int r = 0; r < 3; ++r) {
             if (r == col) continue;
             const double f = m[r][col] / m[col][col];
-            for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
+            for (int q = col; q < 4; ++q) m[r][q] -= f * m[col][q];
         }
     }
     for (int r = 0; r < 3; ++r) c[static_cast<std::size_t>(r)] = m[r][3] / m[r][r];
+    return true;
+}
+
+// Least-squares parabola k = c0 + c1·u + c2·u² through (u_j, j); false when singular.
+bool fit_parabola(const std::array<double, kWindow>& u, std::array<double, 3>& c, double& rms) {
+    const std::vector<double> t(u.begin(), u.end());
+    std::vector<double> k(kWindow);
+    for (std::size_t j = 0; j < kWindow; ++j) k[j] = static_cast<double>(j);
+    if (!fit_quadratic(t, k, 0, kWindow, c)) return false;
     double ss = 0;
     for (std::size_t j = 0; j < kWindow; ++j) {
         const double e = static_cast<double>(j) - (c[0] + c[1] * u[j] + c[2] * u[j] * u[j]);
@@ -84,6 +96,155 @@ std::vector<AxisMotion> estimate_axis_motion(const Chain& chain, double tick_sec
             std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(q), samples.end());
             m.acceleration = samples[q];
         }
+    }
+    return out;
+}
+
+}  // namespace stepzip
+
+namespace stepzip {
+
+TimedPath timed_path(const Chain& timed) {
+    TimedPath out;
+    out.path.axes = std::max(timed.axes - 1, 1);
+    for (int i = 1; i < timed.axes; ++i) out.path.start[static_cast<std::size_t>(i - 1)] = timed.start[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < timed.steps.size(); ++k) {
+        const auto s = static_cast<Step>(timed.steps[k] >> 2);  // time is axis 0
+        if (s == 0) continue;
+        out.path.steps.push_back(s);
+        out.ticks.push_back(k);
+    }
+    return out;
+}
+
+namespace {
+
+// Speed of the parabola c where it passes position `at` while rising (where
+// c1 + 2·c2·t > 0): the square root of its discriminant there; 0 when it
+// never reaches `at` (its turning point: a start from rest or a stop).
+double speed_at(const std::array<double, 3>& c, double at) {
+    const double disc = c[1] * c[1] - 4 * c[2] * (c[0] - at);
+    return disc > 0 ? std::sqrt(disc) : 0;
+}
+
+constexpr std::size_t kMinRamp = 6;
+constexpr double kCruiseShare = 0.97;
+
+}  // namespace
+
+MoveSpeeds move_speeds(std::span<const std::uint64_t> ticks, double length, double tick_seconds) {
+    MoveSpeeds out;
+    const std::size_t n = ticks.size();
+    if (n < 2 || !(length > 0) || !(tick_seconds > 0)) return out;
+    std::vector<double> t(n), s(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        t[k] = (static_cast<double>(ticks[k] - ticks[0]) + 0.5) * tick_seconds;
+        s[k] = static_cast<double>(k + 1) * length / static_cast<double>(n);
+    }
+    const std::size_t w = std::clamp<std::size_t>(n / 16, 2, 16);
+    std::vector<double> v(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t a = k >= w ? k - w : 0, b = std::min(n - 1, k + w);
+        v[k] = t[b] > t[a] ? (s[b] - s[a]) / (t[b] - t[a]) : 0;
+        out.cruise = std::max(out.cruise, v[k]);
+    }
+    std::size_t up = 0;
+    while (up < n && v[up] < kCruiseShare * out.cruise) ++up;
+    std::size_t down = n;
+    while (down > 0 && v[down - 1] < kCruiseShare * out.cruise) --down;
+    out.entry = v.front();
+    out.exit = v.back();
+    double weighted = 0;
+    std::array<double, 3> c{};
+    if (up + 1 >= kMinRamp && fit_quadratic(t, s, 0, up + 1, c) && c[2] > 0) {
+        out.entry = speed_at(c, 0);
+        weighted += 2 * c[2] * static_cast<double>(up + 1);
+        out.ramp_steps += up + 1;
+    }
+    if (down > 0 && n - (down - 1) >= kMinRamp && fit_quadratic(t, s, down - 1, n, c) && c[2] < 0) {
+        out.exit = speed_at(c, length);
+        weighted += -2 * c[2] * static_cast<double>(n - (down - 1));
+        out.ramp_steps += n - (down - 1);
+    }
+    if (out.ramp_steps != 0) out.acceleration = weighted / static_cast<double>(out.ramp_steps);
+    return out;
+}
+
+}  // namespace stepzip
+
+namespace stepzip {
+
+std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, double tolerance) {
+    std::vector<TimedMove> out;
+    const Chain& path = tp.path;
+    const int axes = path.axes;
+    const std::vector<Point> pts = chain_points(path);
+    if (pts.size() < 2) return out;
+    // Douglas-Peucker: the vertices kept, by an explicit stack of spans.
+    std::vector<char> keep(pts.size(), 0);
+    keep.front() = keep.back() = 1;
+    std::vector<std::pair<std::size_t, std::size_t>> todo{{0, pts.size() - 1}};
+    while (!todo.empty()) {
+        const auto [a, b] = todo.back();
+        todo.pop_back();
+        if (b <= a + 1) continue;
+        std::array<double, kMaxAxes> dir{};
+        double len2 = 0;
+        for (int i = 0; i < axes; ++i) {
+            dir[static_cast<std::size_t>(i)] = static_cast<double>(pts[b][static_cast<std::size_t>(i)] - pts[a][static_cast<std::size_t>(i)]);
+            len2 += dir[static_cast<std::size_t>(i)] * dir[static_cast<std::size_t>(i)];
+        }
+        double worst = -1;
+        std::size_t at = a;
+        for (std::size_t k = a + 1; k < b; ++k) {
+            std::array<double, kMaxAxes> v{};
+            double dot = 0;
+            for (int i = 0; i < axes; ++i) {
+                const auto u = static_cast<std::size_t>(i);
+                v[u] = static_cast<double>(pts[k][u] - pts[a][u]);
+                dot += v[u] * dir[u];
+            }
+            const double t = len2 > 0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
+            double d2 = 0;
+            for (int i = 0; i < axes; ++i) {
+                const auto u = static_cast<std::size_t>(i);
+                const double e = v[u] - t * dir[u];
+                d2 += e * e;
+            }
+            if (d2 > worst) {
+                worst = d2;
+                at = k;
+            }
+        }
+        if (worst > tolerance * tolerance) {
+            keep[at] = 1;
+            todo.emplace_back(a, at);
+            todo.emplace_back(at, b);
+        }
+    }
+    std::size_t a = 0;
+    for (std::size_t b = 1; b < pts.size(); ++b) {
+        if (!keep[b]) continue;
+        TimedMove m;
+        m.first = a;
+        m.last = b - 1;  // point b is after step b - 1
+        m.first_tick = tp.ticks[m.first];
+        m.last_tick = tp.ticks[m.last];
+        int lead = 0;
+        double len2 = 0;
+        for (int i = 0; i < axes; ++i) {
+            const auto u = static_cast<std::size_t>(i);
+            m.delta[u] = pts[b][u] - pts[a][u];
+            len2 += static_cast<double>(m.delta[u]) * static_cast<double>(m.delta[u]);
+            if (std::llabs(m.delta[u]) > std::llabs(m.delta[static_cast<std::size_t>(lead)])) lead = i;
+        }
+        m.length = std::sqrt(len2);
+        std::vector<std::uint64_t> lead_ticks;
+        for (std::size_t k = m.first; k <= m.last; ++k)
+            if (step_axis(path.steps[k], lead) != 0) lead_ticks.push_back(tp.ticks[k]);
+        m.speeds = move_speeds(lead_ticks, m.length, tick_seconds);
+        out.push_back(m);
+        a = b;
     }
     return out;
 }
