@@ -11,6 +11,10 @@ controller does it:
   share of the move), the nominal speed limited per axis the same way;
 - junction speeds by the junction-deviation rule, then a backward and a
   forward pass over the whole job (unlimited look-ahead);
+- with --scurve, S-shaped ramps instead: the speed follows a smoothstep
+  (3u^2 - 2u^3) from one speed to the next, its peak acceleration the
+  limit (the planner works with 2/3 of it, the mean acceleration of such a
+  ramp, so ramps take 1.5 times as long as trapezoid ones);
 - a segment generator that cuts the profile into constant-rate stepper
   segments of --segment-ms (a segment is stretched until it holds a step);
 - a stepper interrupt at the segment's rate in CPU cycles, a Bresenham line
@@ -28,7 +32,7 @@ exit speed in steps/s of the leading axis, acceleration in steps/s^2 of the
 leading axis) is written too.
 
 Usage: timed_stream.py [--axes 2|3] [--seed N] [--shapes N] [--steps-mm X]
-                       [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM]
+                       [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM] [--scurve]
                        [--tick-us US] [--segment-ms MS] [--cpu-mhz MHZ]
                        [--report FILE] > out.steps
 """
@@ -98,6 +102,8 @@ def plan(moves, a):
         if feed is not None:
             nominal = min(nominal, feed / 60)
         accel = min(acc[i] / abs(unit[i]) for i in range(a.axes) if unit[i] != 0)
+        if a.scurve:
+            accel /= 1.5  # the mean acceleration of a smoothstep ramp whose peak is the limit
         vj = 0.0
         if prev_unit is not None:
             cos_t = -sum(prev_unit[i] * unit[i] for i in range(a.axes))
@@ -105,7 +111,7 @@ def plan(moves, a):
                 cos_t = max(cos_t, -0.999999)
                 sin_half = math.sqrt(0.5 * (1 - cos_t))
                 vj = math.sqrt(accel * a.jd * sin_half / (1 - sin_half))
-        blocks.append(dict(d=d, length=length, nominal=nominal, accel=accel, vj_max=vj))
+        blocks.append(dict(d=d, length=length, nominal=nominal, accel=accel, vj_max=vj, scurve=a.scurve))
         prev_unit = unit
         cur = tgt
     # Entry speeds: junction limit, reachable backward from a stop, then forward.
@@ -145,11 +151,17 @@ def position(b, t):
     t2 = cruise_d / vc if vc > 0 else 0.0
     total = t1 + t2 + t3
     if t <= t1:
+        if b['scurve'] and t1 > 0:
+            u = t / t1
+            return v0 * t + (vc - v0) * t1 * (u ** 3 - u ** 4 / 2), total
         return v0 * t + 0.5 * A * t * t, total
     if t <= t1 + t2:
         return b['acc_d'] + vc * (t - t1), total
     if t < total:
         u = t - t1 - t2
+        if b['scurve'] and t3 > 0:
+            w = u / t3
+            return b['acc_d'] + cruise_d + vc * u - (vc - v1) * t3 * (w ** 3 - w ** 4 / 2), total
         return b['acc_d'] + cruise_d + vc * u - 0.5 * A * u * u, total
     return b['length'], total
 
@@ -234,6 +246,7 @@ def main():
     p.add_argument('--tick-us', type=float, default=20.0)
     p.add_argument('--segment-ms', type=float, default=10.0)
     p.add_argument('--cpu-mhz', type=int, default=16)
+    p.add_argument('--scurve', action='store_true', help='S-shaped (smoothstep) speed ramps')
     p.add_argument('--report')
     a = p.parse_args()
     for name in ('steps_mm', 'rate', 'accel'):
@@ -248,8 +261,9 @@ def main():
         for b in blocks:
             lead = max(range(a.axes), key=lambda i: abs(b['d'][i]))
             k = abs(b['d'][lead]) / b['length']  # lead-axis steps per mm of path
+            peak = 1.5 if a.scurve else 1.0  # the planner's acceleration is the mean of an S ramp
             rep.append(dict(steps=b['d'], entry=b['entry'] * k, cruise=b['cruise'] * k,
-                            exit=b['exit'] * k, accel=b['accel'] * k))
+                            exit=b['exit'] * k, accel=b['accel'] * k * peak))
         with open(a.report, 'w') as f:
             json.dump(rep, f, indent=0)
 
