@@ -109,6 +109,7 @@ private:
     void before_open_cut() {}
 
     bool line_done(int term);
+    const unsigned char* canonical_line(const unsigned char* p, const unsigned char* end);
     bool parse(std::string_view s, ParsedLine& pl);
     bool point_line(const ParsedLine& pl, int term);
 
@@ -279,8 +280,82 @@ bool PointsParser::line_done(int term) {
     return true;
 }
 
+// The fast path of a whole line at p: a point line in one of the four
+// styles (canonical numbers, one separator throughout, LF or CR LF) that is
+// one step from the previous point or starts a chain, read in place and
+// recorded exactly as line_done() records it. Returns the byte after its LF,
+// or nullptr for any other line (line_done() then reads it, errors
+// included).
+const unsigned char* PointsParser::canonical_line(const unsigned char* p, const unsigned char* end) {
+    std::int64_t v[kMaxAxes];
+    int count = 0;
+    int sep = -1;
+    for (;;) {
+        const bool neg = p < end && *p == '-';
+        if (neg) ++p;
+        const unsigned char* digits = p;
+        std::uint64_t m = 0;
+        while (p < end && is_digit(*p)) m = m * 10 + static_cast<unsigned>(*p++ - '0');
+        const auto nd = p - digits;
+        // Canonical: 1..18 digits (below the limit), no leading zero, no "-0".
+        if (nd == 0 || nd > 18 || (*digits == '0' && (nd > 1 || neg))) return nullptr;
+        if (count == kMaxAxes) return nullptr;
+        v[count++] = neg ? -static_cast<std::int64_t>(m) : static_cast<std::int64_t>(m);
+        if (p >= end) return nullptr;
+        int k;
+        if (*p == ' ') k = 0;
+        else if (*p == '\t') k = 3;
+        else if (*p == ',') k = (p + 1 < end && p[1] == ' ') ? 2 : 1;
+        else break;
+        if (sep >= 0 && k != sep) return nullptr;
+        sep = k;
+        p += k == 2 ? 2 : 1;
+        if (p >= end || !(is_digit(*p) || *p == '-')) return nullptr;
+    }
+    int term = 1;
+    if (*p == '\r') {
+        ++p;
+        term = 2;
+    }
+    if (p >= end || *p != '\n' || count < 2 || sep < 0) return nullptr;
+    if (axes_ != 0 && count != axes_) return nullptr;
+    const bool first = !in_chain_;
+    if (!first) {
+        int d[kMaxAxes] = {};
+        bool moved = false;
+        for (int a = 0; a < count; ++a) {
+            const std::int64_t diff = v[a] - prev_[a];
+            if (diff < -1 || diff > 1) return nullptr;
+            d[a] = static_cast<int>(diff);
+            moved = moved || diff != 0;
+        }
+        if (!moved) return nullptr;
+        if (full()) cut(true);
+        blk_.chains.back().steps.push_back(make_step(d, count));
+        ++blk_steps_;
+    } else {
+        if (axes_ == 0) axes_ = count;
+        Chain c;
+        c.axes = axes_;
+        for (int a = 0; a < count; ++a) c.start[a] = v[a];
+        blk_.chains.push_back(std::move(c));
+        in_chain_ = true;
+    }
+    for (int a = 0; a < count; ++a) prev_[a] = v[a];
+    lb_.set_style(static_cast<std::uint8_t>(sep | (term == 2 ? kCrlf : 0)));
+    lb_.canonical_line(first);
+    next_line();
+    return p + 1;
+}
+
 const unsigned char* PointsParser::scan(const unsigned char* p, const unsigned char* end) {
     while (p < end && !in_comment()) {
+        if (buf_.empty() && (is_digit(*p) || *p == '-')) {
+            if (const unsigned char* q = canonical_line(p, end)) {
+                p = q;
+                continue;
+            }
+        }
         const unsigned char c = *p++;
         if (c == '\n') {
             if (!line_done(1)) return nullptr;
