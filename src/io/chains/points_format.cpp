@@ -7,6 +7,7 @@
 // Complexity: O(1) per input byte.
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "line_scanner.hpp"
@@ -431,30 +432,94 @@ private:
     Point p_{};
 };
 
-void append_style_line(std::string& out, const Point& p, int axes, std::uint8_t style) {
-    for (int a = 0; a < axes; ++a) {
-        if (a) out.append(style_sep(style));
-        append_int(out, p[a]);
+// Writes the canonical decimal spelling of v at w; returns its end.
+char* put_int(char* w, std::int64_t v) {
+    std::uint64_t m = v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+    if (v < 0) *w++ = '-';
+    std::size_t len = 1;
+    for (std::uint64_t bound = 10; len < 20 && m >= bound; bound *= 10) ++len;
+    static constexpr char kPairs[] =
+        "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+        "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+        "8081828384858687888990919293949596979899";
+    char* d = w + len;
+    while (m >= 100) {  // two digits per division
+        const auto r = static_cast<std::size_t>(m % 100);
+        m /= 100;
+        *--d = kPairs[2 * r + 1];
+        *--d = kPairs[2 * r];
     }
-    out.append(style_eol(style));
+    if (m >= 10) {
+        *--d = kPairs[2 * m + 1];
+        *--d = kPairs[2 * m];
+    } else {
+        *--d = static_cast<char>('0' + m);
+    }
+    return w + len;
 }
+
+// Point lines in a style, gathered in a buffer and appended to `out` a few
+// kilobytes at a time (a call per line was most of the rendering time).
+class LineWriter {
+public:
+    explicit LineWriter(std::string& out) : out_(out) {}
+    LineWriter(const LineWriter&) = delete;
+    LineWriter& operator=(const LineWriter&) = delete;
+    ~LineWriter() { flush(); }
+    void line(const Point& p, int axes, std::uint8_t style) {
+        if (n_ > sizeof buf_ - kMaxLine) flush();
+        char* w = buf_ + n_;
+        const std::string_view sep = style_sep(style);
+        for (int a = 0; a < axes; ++a) {
+            if (a) {
+                for (const char c : sep) *w++ = c;
+            }
+            w = put_int(w, p[a]);
+        }
+        n_ = static_cast<std::size_t>(w - buf_);
+        eol(style);
+    }
+    /// A line end in the style (a blank line when alone).
+    void eol(std::uint8_t style) {
+        if (n_ > sizeof buf_ - kMaxLine) flush();
+        if (style & kCrlf) buf_[n_++] = '\r';
+        buf_[n_++] = '\n';
+    }
+    void flush() {
+        out_.append(buf_, n_);
+        n_ = 0;
+    }
+
+private:
+    // Sign, 19 digits and a separator of up to 2 bytes per axis, CR LF.
+    static constexpr std::size_t kMaxLine = kMaxAxes * 22 + 2;
+    std::string& out_;
+    std::size_t n_ = 0;
+    char buf_[8192];
+};
 
 Result<void> PointsRenderer::write(const Block& b, std::string& out) {
     if (b.continues && b.chains.empty()) return corrupt("points", "a continued block without chains");
     for (const Chain& c : b.chains) {
         if (c.axes < 2 || c.axes > kMaxAxes) return corrupt("points", "a bad axis count");
+        // step_valid() on every step, branch-free: no bit past the axes, no
+        // DIR bit on a resting axis, some axis moving.
+        const unsigned past = c.axes < kMaxAxes ? ~0u << (2 * c.axes) : ~0u << (2 * kMaxAxes);
+        unsigned bad = 0;
         for (const Step s : c.steps)
-            if (!step_valid(s, c.axes)) return corrupt("points", "an invalid step");
+            bad |= (s & past) | ((s >> 1) & ~s & 0x555u) | static_cast<unsigned>((s & 0x555u) == 0);
+        if (bad != 0) return corrupt("points", "an invalid step");
     }
     PointCursor cur(b);
     if (b.layout.empty()) {  // canonical: chains separated by one empty line
+        LineWriter lw(out);
         bool first = true;
         while (!cur.done()) {
-            if (!first && cur.at_chain_start()) out.push_back('\n');
+            if (!first && cur.at_chain_start()) lw.eol(0);
             first = false;
             const int axes = cur.axes();
             const Point* p = cur.next();
-            append_style_line(out, *p, axes, 0);
+            lw.line(*p, axes, 0);
         }
         return {};
     }
@@ -469,23 +534,25 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
             case kLines: {
                 std::uint64_t k = 0;
                 if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                LineWriter lw(out);
                 for (std::uint64_t j = 0; j < k; ++j) {
                     if (cur.done()) return corrupt("points", "a run of lines past the block's chains");
                     const int axes = cur.axes();
-                    append_style_line(out, *cur.next(), axes, style);
+                    lw.line(*cur.next(), axes, style);
                 }
                 break;
             }
             case kChains: {
                 std::uint64_t k = 0;
                 if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                LineWriter lw(out);
                 for (std::uint64_t j = 0; j < k; ++j) {
                     if (!cur.at_chain_start()) return corrupt("points", "a chain run not at a chain");
                     const int axes = cur.axes();
                     do {
-                        append_style_line(out, *cur.next(), axes, style);
+                        lw.line(*cur.next(), axes, style);
                     } while (cur.chain_left());
-                    out.append(style_eol(style));
+                    lw.eol(style);
                 }
                 break;
             }
