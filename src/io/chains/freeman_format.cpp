@@ -378,13 +378,12 @@ bool append_codes(std::string& out, const Chain& c) {
     const std::size_t n = out.size();
     out.resize(n + c.steps.size());
     char* w = out.data() + n;
-    unsigned bad = 0;  // branch-free: one test after the chain
     for (const Step s : c.steps) {
-        const char d = kStepCode[s & 15u];
-        bad |= static_cast<unsigned>(s >> 4) | static_cast<unsigned>(d == 0);
+        const char d = s < 16 ? kStepCode[s] : 0;
+        if (d == 0) return false;
         *w++ = d;
     }
-    return bad == 0;
+    return true;
 }
 
 void append_canonical_head(std::string& out, const Chain& c) {
