@@ -76,6 +76,9 @@ TEST(FastExpansion, TwoAxisLeadingEqualsStepRuleOverWholeRange) {
                 const Point d{dx, dy};
                 multiaxis_linear(d, 2, &f0, fast);
                 ASSERT_EQ(fast, eval8_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
+                fast.clear();
+                accelerated_linear(dx, dy, f0, fast);
+                ASSERT_EQ(fast, eval8_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
             }
         }
 }

@@ -101,6 +101,14 @@ void accelerated_linear(std::int64_t dx, std::int64_t dy, std::int64_t f0, std::
     const std::int64_t l = x_leads ? ax : ay, s = x_leads ? ay : ax;
     const Step straight = x_leads ? make_step2(sign(dx), 0) : make_step2(0, sign(dy));
     const Step diagonal = make_step2(sign(dx), sign(dy));
+    if (!trace && (s == 0 || s == l)) {
+        out.insert(out.end(), static_cast<std::size_t>(l), s == 0 ? straight : diagonal);
+        return;
+    }
+    if (!trace && f0 >= -s && f0 < l - s) {
+        emit_two_letter(l, s, f0, straight, diagonal, out);
+        return;
+    }
     std::int64_t f = f0;
     for (std::int64_t t = 0; t < l; ++t) {
         bool diag;
