@@ -57,8 +57,8 @@ class TwoAxisWindow {
 public:
     TwoAxisWindow(Profile p) : p_(p), eight_(profile_eight_connected(p)) {}
 
-    // Written through raw pointers into vectors sized for every tick, then
-    // cut to the counts (no growth check per step).
+    // Written through raw pointers into vectors sized for every tick (no
+    // growth check per step); count_[a] of them hold axis a's ticks.
     void load(std::span<const Step> w) {
         const std::size_t n = w.size();
         std::size_t cnt[2] = {0, 0};
