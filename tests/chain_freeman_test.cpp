@@ -1,6 +1,8 @@
 // Core types: steps, chains, Freeman-8 conversion.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "stepzip/chain.hpp"
 
 namespace stepzip {
@@ -35,6 +37,26 @@ TEST(Chain, FreemanRoundTripAndEnd) {
     EXPECT_FALSE(c->four_connected());
     EXPECT_TRUE(from_freeman(0, 0, "0246")->four_connected());
     EXPECT_EQ(chain_points(*c).size(), 11u);
+}
+
+// end() sums each axis in one pass; it must read every step as apply_step()
+// does, a DIR bit on a resting axis (invalid, "10") included.
+TEST(Chain, EndIsTheLastPointOnEveryAxisCount) {
+    std::mt19937 rng(11);
+    for (int axes = 2; axes <= kMaxAxes; ++axes) {
+        for (int t = 0; t < 20; ++t) {
+            Chain c;
+            c.axes = axes;
+            for (int a = 0; a < axes; ++a) c.start[a] = static_cast<std::int64_t>(rng() % 2001) - 1000;
+            const std::size_t n = rng() % 3000;
+            for (std::size_t i = 0; i < n; ++i) c.steps.push_back(static_cast<Step>(rng() & 0xFFFu));
+            Point expect = c.start;
+            for (const Step s : c.steps) apply_step(expect, s, axes);
+            EXPECT_EQ(c.end(), expect) << axes << " axes, " << n << " steps";
+            const std::vector<Point> pts = chain_points(c);
+            EXPECT_EQ(pts.back(), expect);
+        }
+    }
 }
 
 TEST(Chain, FreemanRejectsBadDigit) {

@@ -3,6 +3,7 @@
 //  * two-axis expansion by division per run (src/interpolate/linear.cpp)
 //    equals the per-step rules of docs/FORMAT.md section 2 for every
 //    (dx, dy, phase) in a range, phases outside the exact range included;
+//    so does the expansion on 3 to 6 axes (one minor axis at a time);
 //  * the two-axis default-phase cut (src/segment/default_phase_cut.cpp) equals the reference
 //    cut that expands every candidate pattern, on random chains drawn by
 //    the profiles' own interpolators and on random walks.
@@ -75,6 +76,9 @@ TEST(FastExpansion, TwoAxisLeadingEqualsStepRuleOverWholeRange) {
                 const Point d{dx, dy};
                 multiaxis_linear(d, 2, &f0, fast);
                 ASSERT_EQ(fast, eval8_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
+                fast.clear();
+                accelerated_linear(dx, dy, f0, fast);
+                ASSERT_EQ(fast, eval8_steps(dx, dy, f0)) << dx << " " << dy << " " << f0;
             }
         }
 }
@@ -92,6 +96,53 @@ TEST(FastExpansion, LongSegmentsEqualStepRule) {
         fast.clear();
         eval_linear(-s, l, f0, fast);
         ASSERT_EQ(fast, eval4_steps(-s, l, f0));
+    }
+}
+
+// The leading-axis rule on any number of axes, step by step.
+std::vector<Step> multi_steps(const Point& d, int axes, const std::int64_t* phases) {
+    const int lead = leading_axis(d, axes);
+    const std::int64_t l = std::llabs(d[lead]);
+    std::int64_t f[kMaxAxes] = {};
+    for (int j = 0; j + 1 < axes; ++j) f[j] = phases[j];
+    std::vector<Step> out;
+    for (std::int64_t t = 0; t < l; ++t) {
+        int mv[kMaxAxes] = {};
+        mv[lead] = sgn(d[lead]);
+        int j = 0;
+        for (int i = 0; i < axes; ++i) {
+            if (i == lead) continue;
+            const std::int64_t s = std::llabs(d[i]);
+            bool move;
+            if (s == 0) move = false;
+            else if (s == l) move = true;
+            else if (f[j] >= 0) { move = false; f[j] -= s; }
+            else { move = true; f[j] += l - s; }
+            mv[i] = move ? sgn(d[i]) : 0;
+            ++j;
+        }
+        out.push_back(make_step(mv, axes));
+    }
+    return out;
+}
+
+TEST(FastExpansion, MoreAxesEqualStepRule) {
+    std::mt19937_64 rng(21);
+    for (int i = 0; i < 40000; ++i) {
+        const int axes = 3 + static_cast<int>(rng() % 4);
+        const std::int64_t range = i % 4 == 0 ? 2000 : 13;  // small totals hit ties and degenerate axes
+        Point d{};
+        for (int a = 0; a < axes; ++a)
+            d[a] = static_cast<std::int64_t>(rng() % (2 * range + 1)) - range;
+        const int lead = leading_axis(d, axes);
+        const std::int64_t l = std::llabs(d[lead]);
+        if (l == 0) continue;
+        std::int64_t ph[kMaxAxes] = {};
+        for (int j = 0; j + 1 < axes; ++j)  // inside the exact range mostly, sometimes just outside
+            ph[j] = -l - 2 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(2 * l + 4));
+        std::vector<Step> fast;
+        multiaxis_linear(d, axes, ph, fast);
+        ASSERT_EQ(fast, multi_steps(d, axes, ph)) << "case " << i;
     }
 }
 

@@ -281,6 +281,15 @@ TEST(PointsRoundTrip, HandWrittenInputs) {
         "0 0\n1 1\n\n",
         "  # indented comment\n0 0\n",
         "0   0\n1   1\n",
+        // Lines next to the in-place reading of canonical lines: mixed
+        // separators, "-0", leading zeros, 18 and 19 digits, CR LF.
+        "10,-10\n11,-9\n11, -8\n12\t-8\n",
+        "0 -1\n1 -0\n2 1\n",
+        "0 0\n1 01\n2 2\n",
+        "100000000000000000 0\n100000000000000001 -1\n",
+        "1000000000000000000 0\n1000000000000000001 -1\n",
+        "5 5\r\n6 6\n7 7\r\n",
+        "1,2,3\n2,2,3\n2, 3,3\n",
     };
     for (const auto& in : inputs) {
         SCOPED_TRACE("input: " + in);

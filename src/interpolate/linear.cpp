@@ -12,19 +12,64 @@ namespace {
 int sign(std::int64_t v) { return (v > 0) - (v < 0); }
 
 // Fast path shared by the two-letter rules below (not normative: it emits
-// exactly what the per-step loops emit, tests/interpolate_fast_test.cpp
+// exactly what the per-step loops emit, tests/container_fast_paths_test.cpp
 // compares them over whole ranges). Rule: n ticks, f = f0; f >= 0: letter
 // `plain`, f -= s; else letter `other`, f += n - s. For f0 in [-s, n - s)
 // the invariant -s <= f < n - s holds, so after t ticks the count of
 // `other` letters is ceil((t·s - f0 - s) / n), and the j-th one (j >= 1)
-// falls on tick floor(((j - 1)·n + f0 + s) / s) + 1: one division per run.
+// falls on tick floor(((j - 1)·n + f0 + s) / s) + 1: one division per run,
+// the next tick by adding the quotient and remainder of n / s.
+// Calls at(t) for the 0-based tick t of each `other` letter, in order.
+template <class At>
+void other_ticks(std::int64_t n, std::int64_t s, std::int64_t f0, At at) {
+    const std::int64_t num = f0 + s;  // >= 0: f0 >= -s
+    std::int64_t t = num / s, rem = num % s;
+    const std::int64_t q = n / s, r = n % s;
+    for (std::int64_t j = 0; j < s; ++j) {
+        at(t);
+        t += q;
+        rem += r;
+        if (rem >= s) {
+            rem -= s;
+            ++t;
+        }
+    }
+}
+
 void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other,
                      std::vector<Step>& out) {
     const std::size_t base = out.size();
     out.resize(base + static_cast<std::size_t>(n), plain);
     Step* o = out.data() + base;
-    std::int64_t num = f0 + s;  // (j - 1)·n + f0 + s
-    for (std::int64_t j = 0; j < s; ++j, num += n) o[num / s] = other;
+    other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
+}
+// More axes, each minor axis by the rule of emit_two_letter (letter "moves"
+// at the ticks found by division, else "rests"): the run of leading-axis
+// steps is written at once, then each minor axis's moves are or-ed into
+// it. Not normative: exactly the per-step loop of multiaxis_linear when
+// every phase is in its exact range or its function is degenerate
+// (tests/container_fast_paths_test.cpp compares them); false, and nothing
+// written, otherwise.
+bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* minor, const std::int64_t* s,
+                     const std::int64_t* f0, int nminor, std::vector<Step>& out) {
+    for (int j = 0; j < nminor; ++j)
+        if (s[j] != 0 && s[j] != l && (f0[j] < -s[j] || f0[j] >= l - s[j])) return false;
+    const auto bits = [&](int axis) {
+        return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis));
+    };
+    const std::size_t base = out.size();
+    out.resize(base + static_cast<std::size_t>(l), bits(lead));
+    Step* o = out.data() + base;
+    for (int j = 0; j < nminor; ++j) {
+        const Step b = bits(minor[j]);
+        if (s[j] == 0) continue;
+        if (s[j] == l) {
+            for (std::int64_t t = 0; t < l; ++t) o[t] = static_cast<Step>(o[t] | b);
+            continue;
+        }
+        other_ticks(l, s[j], f0[j], [&](std::int64_t t) { o[t] = static_cast<Step>(o[t] | b); });
+    }
+    return true;
 }
 }  // namespace
 
@@ -56,6 +101,14 @@ void accelerated_linear(std::int64_t dx, std::int64_t dy, std::int64_t f0, std::
     const std::int64_t l = x_leads ? ax : ay, s = x_leads ? ay : ax;
     const Step straight = x_leads ? make_step2(sign(dx), 0) : make_step2(0, sign(dy));
     const Step diagonal = make_step2(sign(dx), sign(dy));
+    if (!trace && (s == 0 || s == l)) {
+        out.insert(out.end(), static_cast<std::size_t>(l), s == 0 ? straight : diagonal);
+        return;
+    }
+    if (!trace && f0 >= -s && f0 < l - s) {
+        emit_two_letter(l, s, f0, straight, diagonal, out);
+        return;
+    }
     std::int64_t f = f0;
     for (std::int64_t t = 0; t < l; ++t) {
         bool diag;
@@ -95,6 +148,8 @@ void multiaxis_linear(const Point& delta, int axes, const std::int64_t* phases,
         f[nminor] = variant == MultiAxisVariant::standard ? phases[nminor] : 0;
         ++nminor;
     }
+    if (variant == MultiAxisVariant::standard && emit_minor_axes(delta, lead, l, minor, s, f, nminor, out))
+        return;
     int d[kMaxAxes] = {};
     for (std::int64_t t = 0; t < l; ++t) {
         d[lead] = sign(delta[lead]);

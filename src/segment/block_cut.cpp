@@ -11,19 +11,22 @@ namespace stepzip {
 Result<void> cut_block(std::span<const Chain> chains, int axes, Profile p, BlockCut kind,
                        std::vector<std::vector<Segment>>& out, SegmentStats* stats, std::uint64_t first_chain) {
     out.assign(chains.size(), {});
+    // The chain's name for an error message, built only on error (no
+    // allocation per chain on the way).
+    auto chain = [&](std::size_t c) {
+        return "chain " + std::to_string(first_chain + c + 1) + ": profile " + std::string(profile_name(p)) + ": ";
+    };
     for (std::size_t c = 0; c < chains.size(); ++c) {
-        const std::string chain = "chain " + std::to_string(first_chain + c + 1) + ": profile " +
-                                  std::string(profile_name(p)) + ": ";
         if (kind == BlockCut::default_phase) {
             if (!cut_preferring_default(chains[c].steps, axes, p, out[c]))
-                return make_error(Errc::unsupported, chain + "no default-phase cut");
+                return make_error(Errc::unsupported, chain(c) + "no default-phase cut");
             continue;
         }
         const SegmenterKind k = kind == BlockCut::optimal ? SegmenterKind::optimal
                                 : kind == BlockCut::patent ? SegmenterKind::patent
                                                            : SegmenterKind::greedy;
         if (auto r = segment_steps(chains[c].steps, axes, p, k, out[c], stats); !r)
-            return make_error(r.error().code, chain + r.error().message);
+            return make_error(r.error().code, chain(c) + r.error().message);
     }
     return {};
 }

@@ -57,25 +57,36 @@ class TwoAxisWindow {
 public:
     TwoAxisWindow(Profile p) : p_(p), eight_(profile_eight_connected(p)) {}
 
+    // Written through raw pointers into vectors sized for every tick (no
+    // growth check per step); count_[a] of them hold axis a's ticks.
     void load(std::span<const Step> w) {
+        const std::size_t n = w.size();
+        std::size_t cnt[2] = {0, 0};
+        std::int64_t* at[2];
         for (int a = 0; a < 2; ++a) {
-            ticks_[a].clear();
+            if (ticks_[a].size() < n) ticks_[a].resize(n);
+            at[a] = ticks_[a].data();
             sign_[a] = 1;
         }
-        for (std::size_t t = 0; t < w.size(); ++t)
-            for (int a = 0; a < 2; ++a)
-                if (const int d = step_axis(w[t], a); d != 0) {
-                    ticks_[a].push_back(static_cast<std::int64_t>(t));
-                    sign_[a] = d;
-                }
+        for (std::size_t t = 0; t < n; ++t) {
+            const unsigned s = w[t];
+            at[0][cnt[0]] = static_cast<std::int64_t>(t);
+            at[1][cnt[1]] = static_cast<std::int64_t>(t);
+            cnt[0] += s & 1u;
+            cnt[1] += (s >> 2) & 1u;
+        }
+        for (int a = 0; a < 2; ++a) {
+            count_[a] = cnt[a];
+            if (cnt[a] != 0) sign_[a] = step_axis(w[static_cast<std::size_t>(at[a][cnt[a] - 1])], a);
+        }
     }
 
     // The default-phase segment of the first k steps, if it draws them.
     bool default_exact(std::size_t k, Segment& seg) const {
         std::int64_t cnt[2];
         for (int a = 0; a < 2; ++a)
-            cnt[a] = std::upper_bound(ticks_[a].begin(), ticks_[a].end(), static_cast<std::int64_t>(k) - 1) -
-                     ticks_[a].begin();
+            cnt[a] = std::upper_bound(ticks_[a].data(), ticks_[a].data() + count_[a], static_cast<std::int64_t>(k) - 1) -
+                     ticks_[a].data();
         Point delta{};
         for (int a = 0; a < 2; ++a) delta[a] = sign_[a] * cnt[a];
         seg = default_segment(p_, delta, 2);
@@ -101,7 +112,8 @@ public:
 private:
     Profile p_;
     bool eight_;
-    std::vector<std::int64_t> ticks_[2];
+    std::vector<std::int64_t> ticks_[2];  // the first count_[a] entries are axis a's ticks
+    std::size_t count_[2] = {0, 0};
     int sign_[2];
 };
 

@@ -53,10 +53,13 @@ void RunSegment::reset() noexcept {
 
 namespace {
 constexpr unsigned kStepMask = 0x555;  // STEP bits of the six axes
-// Bits 2i, 2i+1 of s become bit i of the mask of moving axes.
+// Bit 2i of s (axis i's STEP bit) becomes bit i of the mask of moving axes:
+// the even bits gathered by three shifts.
 unsigned moving_axes(Step s) {
-    unsigned m = 0;
-    for (int i = 0; i < kMaxAxes; ++i) m |= ((s >> (2 * i)) & 1u) << i;
+    unsigned m = s & kStepMask;
+    m = (m | (m >> 1)) & 0x333u;
+    m = (m | (m >> 2)) & 0x30Fu;
+    m = (m | (m >> 4)) & 0x03Fu;
     return m;
 }
 }  // namespace

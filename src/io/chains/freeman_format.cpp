@@ -181,14 +181,15 @@ const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsi
         std::vector<Step>& steps = blk_.chains.back().steps;
         const std::size_t room = block_steps_ - blk_steps_;
         const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
+        // The run of codes first (a loop the compiler vectorizes), then all
+        // its steps at once.
         const unsigned char* q = p;
-        while (q < lim) {
-            const unsigned d = static_cast<unsigned>(*q - '0');
-            if (d > 7u) break;
-            steps.push_back(kCodeStep[d]);
-            ++q;
-        }
+        while (q < lim && static_cast<unsigned char>(*q - '0') <= 7u) ++q;
         const auto k = static_cast<std::size_t>(q - p);
+        const std::size_t base = steps.size();
+        steps.resize(base + k);
+        Step* o = steps.data() + base;
+        for (std::size_t i = 0; i < k; ++i) o[i] = kCodeStep[(p[i] - '0') & 7];
         blk_steps_ += k;
         col_ += k;
         line_codes_ += k;

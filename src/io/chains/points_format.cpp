@@ -7,6 +7,7 @@
 // Complexity: O(1) per input byte.
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "line_scanner.hpp"
@@ -109,6 +110,7 @@ private:
     void before_open_cut() {}
 
     bool line_done(int term);
+    const unsigned char* canonical_line(const unsigned char* p, const unsigned char* end);
     bool parse(std::string_view s, ParsedLine& pl);
     bool point_line(const ParsedLine& pl, int term);
 
@@ -279,8 +281,82 @@ bool PointsParser::line_done(int term) {
     return true;
 }
 
+// The fast path of a whole line at p: a point line in one of the four
+// styles (canonical numbers, one separator throughout, LF or CR LF) that is
+// one step from the previous point or starts a chain, read in place and
+// recorded exactly as line_done() records it. Returns the byte after its LF,
+// or nullptr for any other line (line_done() then reads it, errors
+// included).
+const unsigned char* PointsParser::canonical_line(const unsigned char* p, const unsigned char* end) {
+    std::int64_t v[kMaxAxes];
+    int count = 0;
+    int sep = -1;
+    for (;;) {
+        const bool neg = p < end && *p == '-';
+        if (neg) ++p;
+        const unsigned char* digits = p;
+        std::uint64_t m = 0;
+        while (p < end && is_digit(*p)) m = m * 10 + static_cast<unsigned>(*p++ - '0');
+        const auto nd = p - digits;
+        // Canonical: 1..18 digits (below the limit), no leading zero, no "-0".
+        if (nd == 0 || nd > 18 || (*digits == '0' && (nd > 1 || neg))) return nullptr;
+        if (count == kMaxAxes) return nullptr;
+        v[count++] = neg ? -static_cast<std::int64_t>(m) : static_cast<std::int64_t>(m);
+        if (p >= end) return nullptr;
+        int k;
+        if (*p == ' ') k = 0;
+        else if (*p == '\t') k = 3;
+        else if (*p == ',') k = (p + 1 < end && p[1] == ' ') ? 2 : 1;
+        else break;
+        if (sep >= 0 && k != sep) return nullptr;
+        sep = k;
+        p += k == 2 ? 2 : 1;
+        if (p >= end || !(is_digit(*p) || *p == '-')) return nullptr;
+    }
+    int term = 1;
+    if (*p == '\r') {
+        ++p;
+        term = 2;
+    }
+    if (p >= end || *p != '\n' || count < 2 || sep < 0) return nullptr;
+    if (axes_ != 0 && count != axes_) return nullptr;
+    const bool first = !in_chain_;
+    if (!first) {
+        int d[kMaxAxes] = {};
+        bool moved = false;
+        for (int a = 0; a < count; ++a) {
+            const std::int64_t diff = v[a] - prev_[a];
+            if (diff < -1 || diff > 1) return nullptr;
+            d[a] = static_cast<int>(diff);
+            moved = moved || diff != 0;
+        }
+        if (!moved) return nullptr;
+        if (full()) cut(true);
+        blk_.chains.back().steps.push_back(make_step(d, count));
+        ++blk_steps_;
+    } else {
+        if (axes_ == 0) axes_ = count;
+        Chain c;
+        c.axes = axes_;
+        for (int a = 0; a < count; ++a) c.start[a] = v[a];
+        blk_.chains.push_back(std::move(c));
+        in_chain_ = true;
+    }
+    for (int a = 0; a < count; ++a) prev_[a] = v[a];
+    lb_.set_style(static_cast<std::uint8_t>(sep | (term == 2 ? kCrlf : 0)));
+    lb_.canonical_line(first);
+    next_line();
+    return p + 1;
+}
+
 const unsigned char* PointsParser::scan(const unsigned char* p, const unsigned char* end) {
     while (p < end && !in_comment()) {
+        if (buf_.empty() && (is_digit(*p) || *p == '-')) {
+            if (const unsigned char* q = canonical_line(p, end)) {
+                p = q;
+                continue;
+            }
+        }
         const unsigned char c = *p++;
         if (c == '\n') {
             if (!line_done(1)) return nullptr;
@@ -356,30 +432,97 @@ private:
     Point p_{};
 };
 
-void append_style_line(std::string& out, const Point& p, int axes, std::uint8_t style) {
-    for (int a = 0; a < axes; ++a) {
-        if (a) out.append(style_sep(style));
-        append_int(out, p[a]);
+// Writes the canonical decimal spelling of v at w; returns its end. The
+// digits are made right to left in a scratch array and moved with one
+// fixed-size copy of 20 bytes: w must have room for 21.
+char* put_int(char* w, std::int64_t v) {
+    static constexpr char kPairs[] =
+        "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+        "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+        "8081828384858687888990919293949596979899";
+    std::uint64_t m = v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+    if (v < 0) *w++ = '-';
+    char tmp[40] = {};
+    char* const e = tmp + 20;
+    char* d = e;
+    while (m >= 100) {  // two digits per division
+        const auto r = static_cast<std::size_t>(m % 100);
+        m /= 100;
+        *--d = kPairs[2 * r + 1];
+        *--d = kPairs[2 * r];
     }
-    out.append(style_eol(style));
+    if (m >= 10) {
+        *--d = kPairs[2 * m + 1];
+        *--d = kPairs[2 * m];
+    } else {
+        *--d = static_cast<char>('0' + m);
+    }
+    std::memcpy(w, d, 20);  // constant size: a few moves, no call; d + 20 <= tmp + 40
+    return w + (e - d);
 }
+
+// Point lines in a style, gathered in a buffer and appended to `out` a few
+// kilobytes at a time (a call per line was most of the rendering time).
+class LineWriter {
+public:
+    explicit LineWriter(std::string& out) : out_(out) {}
+    LineWriter(const LineWriter&) = delete;
+    LineWriter& operator=(const LineWriter&) = delete;
+    ~LineWriter() { flush(); }
+    void line(const Point& p, int axes, std::uint8_t style) {
+        if (n_ > sizeof buf_ - kMaxLine) flush();
+        char* w = buf_ + n_;
+        const std::string_view sep = style_sep(style);
+        for (int a = 0; a < axes; ++a) {
+            if (a) {
+                for (const char c : sep) *w++ = c;
+            }
+            w = put_int(w, p[a]);
+        }
+        n_ = static_cast<std::size_t>(w - buf_);
+        eol(style);
+    }
+    /// A line end in the style (a blank line when alone).
+    void eol(std::uint8_t style) {
+        if (n_ > sizeof buf_ - kMaxLine) flush();
+        if (style & kCrlf) buf_[n_++] = '\r';
+        buf_[n_++] = '\n';
+    }
+    void flush() {
+        out_.append(buf_, n_);
+        n_ = 0;
+    }
+
+private:
+    // Sign, 19 digits and a separator of up to 2 bytes per axis, CR LF.
+    static constexpr std::size_t kMaxLine = kMaxAxes * 22 + 2;
+    std::string& out_;
+    std::size_t n_ = 0;
+    char buf_[8192];
+};
 
 Result<void> PointsRenderer::write(const Block& b, std::string& out) {
     if (b.continues && b.chains.empty()) return corrupt("points", "a continued block without chains");
     for (const Chain& c : b.chains) {
         if (c.axes < 2 || c.axes > kMaxAxes) return corrupt("points", "a bad axis count");
+        // step_valid() on every step, branch-free: no bit past the axes, no
+        // DIR bit on a resting axis, some axis moving.
+        const unsigned past = c.axes < kMaxAxes ? ~0u << (2 * c.axes) : ~0u << (2 * kMaxAxes);
+        unsigned bad = 0;
         for (const Step s : c.steps)
-            if (!step_valid(s, c.axes)) return corrupt("points", "an invalid step");
+            bad |= (s & past) | ((s >> 1) & ~s & 0x555u) | static_cast<unsigned>((s & 0x555u) == 0);
+        if (bad != 0) return corrupt("points", "an invalid step");
     }
     PointCursor cur(b);
     if (b.layout.empty()) {  // canonical: chains separated by one empty line
+        LineWriter lw(out);
         bool first = true;
         while (!cur.done()) {
-            if (!first && cur.at_chain_start()) out.push_back('\n');
+            if (!first && cur.at_chain_start()) lw.eol(0);
             first = false;
             const int axes = cur.axes();
             const Point* p = cur.next();
-            append_style_line(out, *p, axes, 0);
+            lw.line(*p, axes, 0);
         }
         return {};
     }
@@ -394,23 +537,25 @@ Result<void> PointsRenderer::write(const Block& b, std::string& out) {
             case kLines: {
                 std::uint64_t k = 0;
                 if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                LineWriter lw(out);
                 for (std::uint64_t j = 0; j < k; ++j) {
                     if (cur.done()) return corrupt("points", "a run of lines past the block's chains");
                     const int axes = cur.axes();
-                    append_style_line(out, *cur.next(), axes, style);
+                    lw.line(*cur.next(), axes, style);
                 }
                 break;
             }
             case kChains: {
                 std::uint64_t k = 0;
                 if (!lc.varint(k)) return corrupt("points", "a truncated run");
+                LineWriter lw(out);
                 for (std::uint64_t j = 0; j < k; ++j) {
                     if (!cur.at_chain_start()) return corrupt("points", "a chain run not at a chain");
                     const int axes = cur.axes();
                     do {
-                        append_style_line(out, *cur.next(), axes, style);
+                        lw.line(*cur.next(), axes, style);
                     } while (cur.chain_left());
-                    out.append(style_eol(style));
+                    lw.eol(style);
                 }
                 break;
             }

@@ -156,8 +156,10 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     if (finished_) return make_error(Errc::invalid_argument, source_ + ": input fed after its end");
     std::vector<Step>* steps = &blk_.chains.back().steps;
     if (steps->capacity() == 0) steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
-    for (const char ch : data) {
-        const auto b = static_cast<std::uint8_t>(ch);
+    const auto* in = reinterpret_cast<const std::uint8_t*>(data.data());
+    const std::size_t size = data.size();
+    for (std::size_t i = 0; i < size; ++i) {
+        const std::uint8_t b = in[i];
         const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
         if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_.size() >= cap_) {
             cut(true);
@@ -177,6 +179,38 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
             run(kIdle);
         }
         level_ = dirs;
+        if (stepping == 0 || layout_.size() >= cap_) continue;
+        // The step ticks that follow without a DIR change on a resting axis
+        // (the common case) in one pass: the same run, no layout byte, no
+        // cut before the block is full; measured first, then written at once.
+        std::size_t e = i + 1;
+        const std::size_t room = std::min<std::uint64_t>(block_steps_ - std::min(blk_steps_, block_steps_),
+                                                         kMaxRun - run_n_);
+        const std::size_t lim = i + 1 + std::min(size - i - 1, room);
+        std::uint8_t lvl = level_, seen = 0;
+        while (e < lim) {
+            const std::uint8_t c = in[e];
+            const auto st = static_cast<std::uint8_t>(c & kStepBits);
+            const auto flips = static_cast<std::uint8_t>(((c & kDirBits) ^ lvl) & ~(st << 1) & kDirBits);
+            if (st == 0 || flips != 0) break;
+            lvl = c & kDirBits;
+            seen |= st;
+            ++e;
+        }
+        const std::size_t k = e - i - 1;
+        if (k == 0) continue;
+        const std::size_t base = steps->size();
+        steps->resize(base + k);
+        Step* o = steps->data() + base;
+        for (std::size_t j = 0; j < k; ++j) {
+            const std::uint8_t c = in[i + 1 + j];
+            o[j] = static_cast<Step>(c & ((c & kStepBits) * 3u));
+        }
+        blk_steps_ += k;
+        run_n_ += k;
+        seen_ |= seen;
+        level_ = lvl;
+        i = e - 1;
     }
     if (last) {
         finished_ = true;
