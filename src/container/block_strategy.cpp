@@ -329,12 +329,34 @@ void note_items(BlockJob& job) {
     if (job.contribution && job.type == kSegmentModel) job.contribution->items = segment_items(job.block, job.cut);
 }
 
-void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (window.empty() || job.type != kSegmentModel) return;
-    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
+namespace {
+
+// The strong levels: the block's model (as chosen, with the window when the
+// record uses it) coded again with mixed predictions (block type 6), kept
+// when smaller. The block's type (job.type) stays the model's.
+void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel)) return;
+    const unsigned flags = view_record(job.record).flags;
+    const WindowView* w = (flags & kFlagWindow) ? &window : nullptr;
+    const std::string model = job.type == kSegmentModel
+                                  ? write_segment_model(job.block, s.profile, job.cut, w, s.timed, true)
+                                  : write_mixed_step_model(job.block, job.order, w);
     if (model.empty() || model.size() > kMaxBlockPayload) return;
-    std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
+    std::string rec = make_stored_record(kMixedModel, flags, model);
     if (rec.size() < job.record.size()) job.record = std::move(rec);
+}
+
+}  // namespace
+
+void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (!window.empty() && job.type == kSegmentModel) {
+        const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
+        if (!model.empty() && model.size() <= kMaxBlockPayload) {
+            std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
+            if (rec.size() < job.record.size()) job.record = std::move(rec);
+        }
+    }
+    mixed_pass(job, s, window);
 }
 
 }  // namespace stepzip::stz
