@@ -18,7 +18,9 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "range_coder.hpp"
@@ -29,10 +31,11 @@ namespace stepzip::stz {
 inline constexpr int kMixMaxModels = 6;
 /// log2 of the entries of each hashed table.
 inline constexpr int kMixTableBits = 20;
-/// Weight sets: 16 fields x 16 slot classes.
+/// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
+/// the slot's low 4 bits; mixer 2: the primary prediction's confidence).
 inline constexpr int kMixSets = 256;
 /// Rows of the adaptive probability map (by slot).
-inline constexpr int kApmRows = 1 << 16;
+inline constexpr int kApmRows = 1 << 12;
 
 namespace mixdetail {
 // squash(x) = 65536 / (1 + e^(-x/256)) at x = -2048, -1920, ..., 2048.
@@ -64,6 +67,29 @@ struct StretchTable {
     }
 };
 inline constexpr StretchTable kStretch{};
+
+// The hashed models' adaptation: as section 1.4's with the shift capped at
+// 6 instead of 5 (they see fewer bits each).
+inline constexpr detail::ShiftTable<6> kSlowShift{};
+
+// A hashed model's context: p XOR 0x8000 (so that all-zero memory is the
+// initial p = 32768, n = 0, and a table costs only the pages it touches).
+struct HashedProb {
+    std::uint16_t px;
+    std::uint16_t n;
+    std::uint32_t p() const noexcept { return px ^ 0x8000u; }
+};
+
+[[gnu::always_inline]] inline void update_slow(HashedProb& pr, int bit) noexcept {
+    const unsigned shift = kSlowShift.v[pr.n];
+    const unsigned p = pr.p();
+    pr.px = static_cast<std::uint16_t>((bit ? p - (p >> shift) : p + ((65536u - p) >> shift)) ^ 0x8000u);
+    pr.n = static_cast<std::uint16_t>(pr.n + (pr.n < 255));
+}
+
+struct FreeDeleter {
+    void operator()(void* p) const noexcept { std::free(p); }
+};
 }  // namespace mixdetail
 
 /// Stretched probability of a 1, p1 in 1..65535 (16-bit).
@@ -79,9 +105,11 @@ public:
     /// context's index in it).
     MixPredictor(int models, const Prob* base)
         : n_(models), base_(base),
-          tables_(static_cast<std::size_t>(models) << kMixTableBits),
+          tables_(static_cast<mixdetail::HashedProb*>(std::calloc(static_cast<std::size_t>(models) << kMixTableBits,
+                                                        sizeof(mixdetail::HashedProb)))),
           apm_(static_cast<std::size_t>(kApmRows) * 33) {
-        for (int s = 0; s < kMixSets; ++s) {
+        if (!tables_) throw std::bad_alloc();
+        for (int s = 0; s < 2 * kMixSets; ++s) {
             std::int32_t* w = &weights_[static_cast<std::size_t>(s) * kInputs];
             w[0] = kPrimaryWeight;
             for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
@@ -110,24 +138,25 @@ public:
             const std::size_t i = ((static_cast<std::size_t>(k) << kMixTableBits) |
                                    (static_cast<std::size_t>(h >> (64 - (kMixTableBits - 4))) << 4)) | low;
             entry_[static_cast<std::size_t>(k)] = &tables_[i];
-            x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p);
+            x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p());
         }
         x_[static_cast<std::size_t>(n_) + 1] = 256;
-        w_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
-        std::int64_t dot = 0;
-        for (int k = 0; k <= n_ + 1; ++k) dot += static_cast<std::int64_t>(w_[k]) * x_[static_cast<std::size_t>(k)];
-        std::int64_t s = dot >> 16;
-        if (s > 2047) s = 2047;
-        if (s < -2047) s = -2047;
-        mixed_ = mixdetail::squash(static_cast<std::int32_t>(s));
+        // Two mixers, each its weight set's dot product; their outputs averaged.
+        w1_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
+        w2_ = &weights_[(static_cast<std::size_t>(kMixSets + field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1)) * kInputs];
+        const std::int32_t s1 = dot(w1_), s2 = dot(w2_);
+        out1_ = mixdetail::squash(s1);
+        out2_ = mixdetail::squash(s2);
+        const std::int32_t s = (s1 + s2) >> 1;
+        const std::int32_t mixed = mixdetail::squash(s);
         // Adaptive probability map on the slot: interpolated between the two
         // nearest of 33 points; the nearer one is trained.
-        const std::int32_t pos = static_cast<std::int32_t>(s) + 2048;
+        const std::int32_t pos = s + 2048;
         const std::int32_t j = pos >> 7, frac = pos & 127;
         std::uint16_t* row = &apm_[static_cast<std::size_t>(slot & (kApmRows - 1)) * 33];
         const std::int32_t refined = (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
         apm_at_ = &row[j + (frac >> 6)];
-        std::int32_t p = (mixed_ + 3 * refined) >> 2;
+        std::int32_t p = (mixed + 3 * refined) >> 2;
         if (p < 1) p = 1;
         if (p > 65535) p = 65535;
         return static_cast<std::uint32_t>(p);
@@ -135,20 +164,35 @@ public:
 
     /// Trains every part on the coded bit (after predict()).
     [[gnu::always_inline]] void update(Prob& pr, int bit) noexcept {
-        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - mixed_) * kRate;
-        for (int k = 0; k <= n_ + 1; ++k) {
-            std::int64_t w = w_[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
-            if (w > kMaxWeight) w = kMaxWeight;
-            if (w < -kMaxWeight) w = -kMaxWeight;
-            w_[k] = static_cast<std::int32_t>(w);
-        }
+        train(w1_, out1_, bit);
+        train(w2_, out2_, bit);
         stz::update(pr, bit);
-        for (int k = 0; k < n_; ++k) stz::update(*entry_[static_cast<std::size_t>(k)], bit);
+        for (int k = 0; k < n_; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
         const std::int32_t target = bit ? 65535 : 0;
         *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> kApmRate));
     }
 
 private:
+    // A mixer's output, stretched: the dot product of its weights (16.16
+    // fixed point) and the inputs, clamped to +-2047.
+    [[gnu::always_inline]] std::int32_t dot(const std::int32_t* w) const noexcept {
+        std::int64_t d = 0;
+        for (int k = 0; k <= n_ + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
+        d >>= 16;
+        return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
+    }
+    // Each weight moves by input * error * kRate / 2^16, the error that of
+    // the mixer's own output; weights stay within +-kMaxWeight.
+    [[gnu::always_inline]] void train(std::int32_t* w, std::int32_t out, int bit) noexcept {
+        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kRate;
+        for (int k = 0; k <= n_ + 1; ++k) {
+            std::int64_t v = w[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
+            if (v > kMaxWeight) v = kMaxWeight;
+            if (v < -kMaxWeight) v = -kMaxWeight;
+            w[k] = static_cast<std::int32_t>(v);
+        }
+    }
+
     static constexpr int kInputs = kMixMaxModels + 2;  // primary, models, bias
     // Chosen on corpora/glyphs/dejavu-8.fc, plotter/hershey-grbl.fc and
     // random/walk-8.fc (docs/benchmarks.md).
@@ -161,15 +205,16 @@ private:
 
     int n_;
     const Prob* base_;
-    std::vector<Prob> tables_;
+    std::unique_ptr<mixdetail::HashedProb[], mixdetail::FreeDeleter> tables_;  // calloc: pages on first touch
     std::vector<std::uint16_t> apm_;
-    std::array<std::int32_t, static_cast<std::size_t>(kMixSets) * kInputs> weights_{};
+    std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
     std::array<std::uint64_t, kMixMaxModels> hash_{};
     std::array<std::int32_t, kInputs> x_{};
-    std::array<Prob*, kMixMaxModels> entry_{};
-    std::int32_t* w_ = nullptr;
+    std::array<mixdetail::HashedProb*, kMixMaxModels> entry_{};
+    std::int32_t* w1_ = nullptr;
+    std::int32_t* w2_ = nullptr;
+    std::int32_t out1_ = 32768, out2_ = 32768;
     std::uint16_t* apm_at_ = nullptr;
-    std::int32_t mixed_ = 32768;
     int field_ = 0;
 };
 

@@ -18,7 +18,8 @@ namespace stepzip::stz {
 /// `segs` under `p` (the same segments as write_chain_payload takes); with
 /// `window`, the models start from it (a block flagged kFlagWindow).
 /// `timed`: the frame's input format is timed (phases predicted, FORMAT.md).
-/// `mixed`: coded with mixed predictions (the inner payload of a block type 6).
+/// `mixed`: the payload of a block type 6 instead (model byte 0, then the
+/// same fields, coded with mixed predictions; docs/FORMAT.md 1.10).
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
                                 const WindowView* window = nullptr, bool timed = false, bool mixed = false);
@@ -30,9 +31,9 @@ std::string write_segment_model(const Block& block, Profile p,
 std::string write_step_model(const Block& block, int order = 0, const WindowView* window = nullptr,
                              int* chosen = nullptr);
 
-/// The step-model payload of `block` with context order `order` (0..4),
-/// coded with mixed predictions (the inner payload of a block type 6,
-/// docs/FORMAT.md); empty when the block is not two-axis.
+/// The payload of a block type 6 of the step model (model byte 1, then the
+/// step-model fields with context order `order` (0..4), coded with mixed
+/// predictions; docs/FORMAT.md 1.10); empty when the block is not two-axis.
 std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
@@ -62,8 +63,8 @@ void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::u
 /// Frame position after the last symbol.
 std::uint64_t step_history_end(const StepHistory& h);
 
-/// `mixed` (both readers): the payload is the inner payload of a block
-/// type 6 (mixed predictions, docs/FORMAT.md).
+/// `mixed` (both readers): the payload is that of a block type 6 of this
+/// model (its model byte first; mixed predictions, docs/FORMAT.md 1.10).
 /// `version`: the frame's format version (version 1 step models predict no
 /// chain start). `running`: with `window`, the frame's history to decode on
 /// (it then holds the block's symbols too) instead of rebuilding the window.

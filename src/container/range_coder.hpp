@@ -31,18 +31,19 @@ struct Prob {
 inline constexpr int kMaxShift = 5;
 
 namespace detail {
-// shift = min(kMaxShift, floor(log2(n + 2))) for every n (0..255).
+// shift = min(Max, floor(log2(n + 2))) for every n (0..255).
+template <int Max>
 struct ShiftTable {
     std::uint8_t v[256];
     constexpr ShiftTable() : v() {
         for (int n = 0; n < 256; ++n) {
             int shift = 0;
             for (unsigned m = static_cast<unsigned>(n) + 2u; m > 1; m >>= 1) ++shift;
-            v[n] = static_cast<std::uint8_t>(shift < kMaxShift ? shift : kMaxShift);
+            v[n] = static_cast<std::uint8_t>(shift < Max ? shift : Max);
         }
     }
 };
-inline constexpr ShiftTable kShift{};
+inline constexpr ShiftTable<kMaxShift> kShift{};
 }  // namespace detail
 
 /// Adaptation: shift = min(kMaxShift, floor(log2(n + 2))); then
