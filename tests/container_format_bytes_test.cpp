@@ -19,38 +19,12 @@
 #include "../src/container/modeled_block.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
+#include "support/pinned_blocks.hpp"
 
 namespace stepzip::stz {
 namespace {
 
-std::string hex(std::string_view b) {
-    static const char* digits = "0123456789abcdef";
-    std::string s;
-    for (unsigned char c : b) {
-        if (!s.empty()) s += ' ';
-        s += digits[c >> 4];
-        s += digits[c & 15];
-    }
-    return s;
-}
-
 // Two chains (plotter-like lines and a repeated pattern), eval8, greedy cut.
-Block fixed_block(const char* freeman) {
-    auto chains = read_chains(InputFormat::freeman, freeman, "pinned");
-    EXPECT_TRUE(chains.ok());
-    Block b;
-    b.axes = 2;
-    if (chains.ok()) b.chains = *chains;
-    return b;
-}
-
-std::vector<std::vector<Segment>> greedy_cut(const Block& b, Profile p) {
-    std::vector<std::vector<Segment>> segs(b.chains.size());
-    for (std::size_t i = 0; i < b.chains.size(); ++i)
-        EXPECT_TRUE(segment_steps(b.chains[i].steps, 2, p, SegmenterKind::greedy, segs[i]).ok());
-    return segs;
-}
-
 constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
 
 TEST(FormatBytes, RecordPayloadOfOneSegmentWorkedByHand) {

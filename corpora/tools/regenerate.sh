@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every corpus file under corpora/ from Debian packages:
 #   hershey-fonts-data (Hershey stroke fonts), gnuplot-nox (HP-GL plots),
-#   fonts-dejavu-core (glyph outlines), libfreetype-dev (rendering).
+#   fonts-dejavu-core and fonts-liberation2 (glyph outlines), libfreetype-dev (rendering).
 # Needs a built stepzip (build/stepzip) for the stepping of vectors.
 # Usage: corpora/tools/regenerate.sh [path/to/stepzip]
 set -euo pipefail
@@ -12,7 +12,7 @@ out=$root/corpora
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-apt_need=(hershey-fonts-data gnuplot-nox fonts-dejavu-core libfreetype-dev pkg-config g++)
+apt_need=(hershey-fonts-data gnuplot-nox fonts-dejavu-core fonts-liberation2 libfreetype-dev pkg-config g++)
 for p in "${apt_need[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
     echo "missing Debian package: $p (apt-get install ${apt_need[*]})" >&2; exit 1; }
@@ -46,6 +46,18 @@ for c in 8 4; do
   for f in DejaVuSans DejaVuSerif DejaVuSansMono; do
     for px in 16 32 64; do
       "$tmp/trace_glyphs" $dejavu/$f.ttf $px $c 33 255 | sed "s|$dejavu/||" >> "$out/glyphs/dejavu-$c.fc"
+    done
+  done
+done
+
+# Contours of another family and other sizes: Liberation Serif and Sans Bold
+# Italic at 24, 48 and 96 px, ASCII only.
+liberation=/usr/share/fonts/truetype/liberation2
+for c in 8 4; do
+  : > "$out/glyphs/liberation-$c.fc"
+  for f in LiberationSerif-Regular LiberationSans-BoldItalic; do
+    for px in 24 48 96; do
+      "$tmp/trace_glyphs" $liberation/$f.ttf $px $c 33 126 | sed "s|$liberation/||" >> "$out/glyphs/liberation-$c.fc"
     done
   done
 done

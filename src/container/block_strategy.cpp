@@ -329,12 +329,44 @@ void note_items(BlockJob& job) {
     if (job.contribution && job.type == kSegmentModel) job.contribution->items = segment_items(job.block, job.cut);
 }
 
+namespace {
+
+// The strong levels: the block's model (as chosen, with the window when the
+// record uses it) coded again with mixed predictions (block type 6), kept
+// when at least 1/64 smaller: a mixed block decodes several times slower,
+// and on data the mixer cannot predict (random walks: about 1% smaller) it
+// is not worth that. The block's type (job.type) stays the model's.
+void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel)) return;
+    const unsigned flags = view_record(job.record).flags;
+    const WindowView* w = (flags & kFlagWindow) ? &window : nullptr;
+    const std::size_t plain = job.record.size();
+    auto keep = [&](const std::string& model) {
+        if (model.empty() || model.size() > kMaxBlockPayload) return;
+        std::string rec = make_stored_record(kMixedModel, flags, model);
+        if (rec.size() * 64 <= plain * 63 && rec.size() < job.record.size()) job.record = std::move(rec);
+    };
+    if (job.type == kSegmentModel) {
+        keep(write_segment_model(job.block, s.profile, job.cut, w, s.timed, true));
+        return;
+    }
+    // The hashed models see the long contexts: a short primary order wins
+    // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4).
+    keep(write_mixed_step_model(job.block, 1, w));
+    if (s.level >= kStrongStepOrders) keep(write_mixed_step_model(job.block, 2, w));
+}
+
+}  // namespace
+
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (window.empty() || job.type != kSegmentModel) return;
-    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
-    if (model.empty() || model.size() > kMaxBlockPayload) return;
-    std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
-    if (rec.size() < job.record.size()) job.record = std::move(rec);
+    if (!window.empty() && job.type == kSegmentModel) {
+        const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
+        if (!model.empty() && model.size() <= kMaxBlockPayload) {
+            std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
+            if (rec.size() < job.record.size()) job.record = std::move(rec);
+        }
+    }
+    mixed_pass(job, s, window);
 }
 
 }  // namespace stepzip::stz

@@ -183,7 +183,7 @@ private:
         } else {
             b.type = first & 7u;
             b.flags = first >> 3;
-            if (b.type == kEnd || b.type > kStepModel)
+            if (b.type == kEnd || (b.type > kStepModel && b.type != kMixedModel))
                 return make_error(Errc::corrupt, at(block_at) + ": unknown block type " + std::to_string(b.type));
             if ((b.flags & ~7u) != 0)
                 return make_error(Errc::reserved_bits, at(block_at) + ": reserved block flags are set");
@@ -206,7 +206,7 @@ private:
             // the one block byte in version 2.
             return make_error(Errc::limit, at(block_at + (hdr_.version == 1 ? 2 : 1)) +
                                                ": block sizes exceed the decoder limits");
-        const bool stored = b.type == kSegmentModel || b.type == kStepModel;
+        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kMixedModel;
         if (stored && b.dsize != b.csize)
             return make_error(Errc::corrupt, at(block_at + 6) +
                                                  ": decoded size of a modeled block differs from its size");
@@ -261,22 +261,31 @@ private:
                 const WindowView* w = (b.flags & kFlagWindow) ? &view : nullptr;
                 const std::string what = where_ + " payload";
                 Result<void> r;
+                // Block type 6 decodes as the model its first byte names.
+                const bool mixed = b.type == kMixedModel;
+                const unsigned model = !mixed ? b.type
+                                       : payload.empty() ? kEnd
+                                       : static_cast<unsigned char>(payload[0]) == kMixedSegment ? kSegmentModel
+                                       : static_cast<unsigned char>(payload[0]) == kMixedStep ? kStepModel
+                                                                                            : kEnd;
+                if (model == kEnd)
+                    return make_error(Errc::corrupt, what + " byte 0: unknown model of a mixed-model block");
                 if (b.type == kChains) {
                     auto raw = unzstd(payload, static_cast<std::uint32_t>(b.dsize), where_);
                     if (!raw) return std::move(raw).error();
                     r = read_chain_payload(*raw, hdr_.profile, hdr_.axes, expand_, block, counts, what);
-                } else if (b.type == kSegmentModel) {
+                } else if (model == kSegmentModel) {
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                            window_.limit() ? &contribution->items : nullptr,
-                                           hdr_.format == InputFormat::timed);
+                                           hdr_.format == InputFormat::timed, mixed);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,
-                                        steps_.get());
+                                        steps_.get(), mixed);
                 }
                 if (!r) return std::move(r).error();
-                if (b.type == kSegmentModel) ++info_.segment_model_blocks;
-                if (b.type == kStepModel) ++info_.step_model_blocks;
+                if (model == kSegmentModel) ++info_.segment_model_blocks;
+                if (model == kStepModel) ++info_.step_model_blocks;
                 info_.segments += counts.segments;
                 info_.steps += counts.steps;
                 info_.chains += counts.chains;

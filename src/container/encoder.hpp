@@ -18,6 +18,11 @@ namespace stepzip::stz {
 /// Encoder effort: from this level on, every block is encoded every way;
 /// below it the choices are made cheaply (docs/FORMAT.md section 4).
 inline constexpr int kThoroughLevel = 10;
+/// The strong tier: from this level on, a modeled block is also coded with
+/// mixed predictions (block type 6) and kept when smaller.
+inline constexpr int kStrongLevel = 10;
+/// From this level on, the mixed step model tries two context orders.
+inline constexpr int kStrongStepOrders = 16;
 
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {
@@ -81,7 +86,8 @@ void note_items(BlockJob& job);
 
 /// Third pass (parallel): a segment-model block coded again from `window`
 /// (whose items are fixed once every earlier block passed the second pass),
-/// kept when smaller.
+/// kept when smaller; at the strong levels, then the block's model with
+/// mixed predictions (block type 6), kept when smaller.
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window);
 
 /// Round-trip proof, part 1 (parallel): decodes the job's record exactly as

@@ -18,9 +18,11 @@ namespace stepzip::stz {
 /// `segs` under `p` (the same segments as write_chain_payload takes); with
 /// `window`, the models start from it (a block flagged kFlagWindow).
 /// `timed`: the frame's input format is timed (phases predicted, FORMAT.md).
+/// `mixed`: the payload of a block type 6 instead (model byte 0, then the
+/// same fields, coded with mixed predictions; docs/FORMAT.md 1.10).
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
-                                const WindowView* window = nullptr, bool timed = false);
+                                const WindowView* window = nullptr, bool timed = false, bool mixed = false);
 
 /// Payload of a step-model block (block type 4); empty when the block is not
 /// two-axis (the step model codes Freeman directions only). `order` 1..4
@@ -28,6 +30,11 @@ std::string write_segment_model(const Block& block, Profile p,
 /// `chosen`, when not null, receives the order written.
 std::string write_step_model(const Block& block, int order = 0, const WindowView* window = nullptr,
                              int* chosen = nullptr);
+
+/// The payload of a block type 6 of the step model (model byte 1, then the
+/// step-model fields with context order `order` (0..4), coded with mixed
+/// predictions; docs/FORMAT.md 1.10); empty when the block is not two-axis.
+std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
 /// `expand`) and add its counts to `counts`. Errors: Errc::corrupt,
@@ -37,7 +44,7 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
                                 const WindowView* window = nullptr, SegmentItems* items = nullptr,
-                                bool timed = false);
+                                bool timed = false, bool mixed = false);
 /// The decoder's step-model history of a frame with a window: the symbols of
 /// every block, from the window's start on, and the match table over them.
 /// A block flagged `window` decodes on it (O(1) per symbol) instead of
@@ -56,13 +63,15 @@ void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::u
 /// Frame position after the last symbol.
 std::uint64_t step_history_end(const StepHistory& h);
 
+/// `mixed` (both readers): the payload is that of a block type 6 of this
+/// model (its model byte first; mixed predictions, docs/FORMAT.md 1.10).
 /// `version`: the frame's format version (version 1 step models predict no
 /// chain start). `running`: with `window`, the frame's history to decode on
 /// (it then holds the block's symbols too) instead of rebuilding the window.
 Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
                              BlockCounts& counts, const std::string& where,
                              const WindowView* window = nullptr, int version = kFormatVersion,
-                             StepHistory* running = nullptr);
+                             StepHistory* running = nullptr, bool mixed = false);
 
 /// Decoder, both models: when `expand`, `out` becomes an empty block of
 /// `axes` axes with `layout`.

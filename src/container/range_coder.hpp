@@ -31,18 +31,19 @@ struct Prob {
 inline constexpr int kMaxShift = 5;
 
 namespace detail {
-// shift = min(kMaxShift, floor(log2(n + 2))) for every n (0..255).
+// shift = min(Max, floor(log2(n + 2))) for every n (0..255).
+template <int Max>
 struct ShiftTable {
     std::uint8_t v[256];
     constexpr ShiftTable() : v() {
         for (int n = 0; n < 256; ++n) {
             int shift = 0;
             for (unsigned m = static_cast<unsigned>(n) + 2u; m > 1; m >>= 1) ++shift;
-            v[n] = static_cast<std::uint8_t>(shift < kMaxShift ? shift : kMaxShift);
+            v[n] = static_cast<std::uint8_t>(shift < Max ? shift : Max);
         }
     }
 };
-inline constexpr ShiftTable kShift{};
+inline constexpr ShiftTable<kMaxShift> kShift{};
 }  // namespace detail
 
 /// Adaptation: shift = min(kMaxShift, floor(log2(n + 2))); then
@@ -61,11 +62,16 @@ inline constexpr ShiftTable kShift{};
 class RangeEncoder {
 public:
     [[gnu::always_inline]] void encode(Prob& pr, int bit) {
-        const std::uint32_t bound = (range_ >> 16) * pr.p;
+        encode_p(pr.p, bit);
+        update(pr, bit);
+    }
+    /// Codes `bit` with probability p0 / 65536 of a 0 (1 <= p0 <= 65535),
+    /// nothing adapted.
+    [[gnu::always_inline]] void encode_p(std::uint32_t p0, int bit) {
+        const std::uint32_t bound = (range_ >> 16) * p0;
         const std::uint32_t mask = 0u - static_cast<std::uint32_t>(bit != 0);
         low_ += bound & mask;
         range_ = (bound & ~mask) | ((range_ - bound) & mask);
-        update(pr, bit);
         // range >= 2^8 after any bit (p >= 1, range >= 2^24 before it): at
         // most two shifts.
         if (range_ < (1u << 24)) [[unlikely]] {
@@ -115,13 +121,18 @@ public:
         for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next();
     }
     [[gnu::always_inline]] int decode(Prob& pr) {
-        const std::uint32_t bound = (range_ >> 16) * pr.p;
+        const int bit = decode_p(pr.p);
+        update(pr, bit);
+        return bit;
+    }
+    /// Decodes a bit coded with probability p0 / 65536 of a 0, nothing adapted.
+    [[gnu::always_inline]] int decode_p(std::uint32_t p0) {
+        const std::uint32_t bound = (range_ >> 16) * p0;
         const int bit = code_ >= bound;
         // Branch-free select: the bit is what the model could not predict.
         const std::uint32_t mask = 0u - static_cast<std::uint32_t>(bit);
         code_ -= bound & mask;
         range_ = (bound & ~mask) | ((range_ - bound) & mask);
-        update(pr, bit);
         if (range_ < (1u << 24)) [[unlikely]] normalize();
         return bit;
     }

@@ -29,13 +29,16 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
     job.decoded.continues = job.block.continues;
     job.decoded.open = job.block.open;
     const WindowView* w = (rec.flags & kFlagWindow) ? &window : nullptr;
+    // Block type 6 carries the model kind in the job (the encoder wrote it).
+    const bool mixed = rec.type == kMixedModel;
     Result<void> r =
         rec.type == kChains
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
-        : rec.type == kSegmentModel
+        : job.type == kSegmentModel
             ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
-                                 s.timed)
-            : read_step_model(rec.payload, s.axes, true, job.decoded, job.counts, where, w);
+                                 s.timed, mixed)
+            : read_step_model(rec.payload, s.axes, true, job.decoded, job.counts, where, w, kFormatVersion, nullptr,
+                              mixed);
     if (!r) {
         job.error = make_error(Errc::mismatch, r.error().message);
         return;

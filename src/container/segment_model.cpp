@@ -19,6 +19,7 @@
 #include <optional>
 
 #include "bench_hooks.hpp"
+#include "mix.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
 #include "timed_phase.hpp"
@@ -84,6 +85,8 @@ struct Contexts {
     Prob known[2];           // segment is in the recent-shapes list, ctx previous one was
     UIntModel rank[8];       // its rank, ctx bit_length(previous rank) (cap 7)
 };
+
+constexpr int kSegmentMixModels = 6;  // hashed context models of the mixed predictions
 
 constexpr std::size_t kShapes = 1024;    // recent distinct segments, most recent first
 constexpr std::size_t kSuccessors = 8;  // segments seen after a given segment
@@ -239,6 +242,11 @@ public:
     SegmentCoder(Io& io, Profile p, int axes, bool timed = false)
         : io_(io), p_(p), axes_(axes), timed_(timed), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
         succ_.resize(1);  // succ_[0]: after no segment
+        if constexpr (kMixedIo<Io>) {
+            static_assert(sizeof(Contexts) % sizeof(Prob) == 0);
+            mixer_ = std::make_unique<MixPredictor>(kSegmentMixModels, reinterpret_cast<const Prob*>(ctx_.get()));
+            io_.m = mixer_.get();
+        }
     }
 
     void set_grid(std::int64_t g) { grid_ = g; }
@@ -274,6 +282,8 @@ public:
     Point start(const Point& want) {
         const std::uint32_t pred = predicted(kStart);
         tphase_.reset();
+        from_start_ = Point{};
+        if constexpr (kMixedIo<Io>) item_contexts(kStart, pred, 0);
         bool hit = false;
         io_.field(0);
         if (pred != kNoPrediction) hit = code_hit(kStart, want == starts_[pred & ~kStartTag]);
@@ -322,6 +332,7 @@ public:
                 want_id = find_shape(w);
             }
         }
+        if constexpr (kMixedIo<Io>) item_contexts(kSeg, pred, in_chain);
         bool hit = false;
         io_.field(2);
         if (pred != kNoPrediction) hit = code_hit(pred == kEndId ? kEnd : kSeg, want_id == pred);
@@ -443,6 +454,8 @@ private:
     }
 
     void note_shape(std::uint32_t id) {
+        shape2_ = shape1_;
+        shape1_ = id;
         recent_.use(id);
         succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
@@ -517,17 +530,56 @@ private:
             const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
             prev_turn_ = (oct - prev_oct_) & 7;
             prev_oct_ = oct;
+            turn_hist_ = (turn_hist_ << 3) | static_cast<unsigned>(prev_turn_);
         } else {
             unsigned neg = 0;
             for (int i = 0; i < axes_; ++i)
                 if (seg.delta[i] < 0) neg |= 1u << i;
             prev_dir_ = (static_cast<unsigned>(lead) << 6) | neg;
             prev_turn_ = 0;
+            turn_hist_ = (turn_hist_ << 9) | prev_dir_;
         }
+        for (int i = 0; i < axes_; ++i) from_start_[i] += seg.delta[i];
+        l_hist_ = (l_hist_ << 4) | static_cast<unsigned>(cap(bit_length(static_cast<std::uint64_t>(std::llabs(seg.delta[lead]))), 15));
         prev_l_ = std::llabs(seg.delta[lead]);
         int j = 0;
         for (int i = 0; i < axes_; ++i)
             if (i != lead) prev_s_[j++] = std::llabs(seg.delta[i]);
+    }
+
+    // The hashed contexts of the mixed predictions for the item about to be
+    // coded (docs/FORMAT.md "Segment-model contexts").
+    void item_contexts(Kind kind, std::uint32_t pred, std::uint64_t in_chain) {
+        const std::uint64_t k = kind;
+        const std::uint64_t at = static_cast<std::uint64_t>(cap(static_cast<int>(std::min<std::uint64_t>(in_chain, 15)), 15));
+        mix_context(io_, 0, ctx_join(ctx_join(k, prev_shape_), static_cast<std::uint64_t>(prev_turn_)));
+        mix_context(io_, 1, ctx_join(ctx_join(ctx_join(k, shape1_), shape2_), prev_shape_ == kNone));
+        mix_context(io_, 2, ctx_join(ctx_join(k, pred), static_cast<std::uint64_t>(len_bucket(len_))));
+        mix_context(io_, 3, ctx_join(ctx_join(k, turn_hist_ & 0x1FFFFFu), l_hist_ & 0xFFu));
+        // Closure: the segment that would end the chain where it started.
+        std::uint64_t close = 0;
+        if (axes_ == 2) {
+            Point need{};
+            need[0] = -from_start_[0];
+            need[1] = -from_start_[1];
+            if (need[0] != 0 || need[1] != 0) {
+                const int lead = leading_axis(need, 2);
+                unsigned neg = 0;
+                for (int i = 0; i < 2; ++i)
+                    if (need[i] < 0) neg |= 1u << i;
+                const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
+                const std::int64_t big = std::llabs(need[lead]), small = std::llabs(need[1 - lead]);
+                close = 1 + static_cast<std::uint64_t>((oct - prev_oct_) & 7) * 64 +
+                        static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(big)), 7)) * 8 +
+                        static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(small)), 7));
+            }
+        } else {
+            std::uint64_t sum = 0;
+            for (int i = 0; i < axes_; ++i) sum += stz::magnitude(from_start_[i]);
+            close = 1 + static_cast<std::uint64_t>(bit_length(sum));
+        }
+        mix_context(io_, 4, ctx_join(ctx_join(k, close), at));
+        mix_context(io_, 5, ctx_join(ctx_join(k, prev_shape_), at));
     }
 
     bool fail(const char* what) {
@@ -567,11 +619,19 @@ private:
             if (lead >= axes_ || (neg >> axes_) != 0) return fail("bad direction");
         }
         const int lctx = cap(bit_length(static_cast<std::uint64_t>(prev_l_)), 11) * 2 + (turn != 0);
+        if constexpr (kMixedIo<Io>)
+            mix_context(io_, 5, ctx_join(ctx_join(ctx_join(1, static_cast<std::uint64_t>(lead) << 8 | neg),
+                                                  static_cast<std::uint64_t>(prev_l_)),
+                                         static_cast<std::uint64_t>(prev_s_[0])));
         io_.field(5);
         const std::uint64_t l1 = code_uint(io_, ctx_->lead[lctx], static_cast<std::uint64_t>(l - 1));
         if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
         l = static_cast<std::int64_t>(l1) + 1;
         const int bl = cap(bit_length(static_cast<std::uint64_t>(l)), 11);
+        if constexpr (kMixedIo<Io>)
+            mix_context(io_, 5, ctx_join(ctx_join(ctx_join(2, static_cast<std::uint64_t>(lead) << 8 | neg),
+                                                  static_cast<std::uint64_t>(l)),
+                                         static_cast<std::uint64_t>(prev_l_)));
         seg = Segment{};
         int j = 0;
         for (int i = 0; i < axes_; ++i) {
@@ -633,6 +693,12 @@ private:
     std::uint64_t prev_rank_ = 0;
     std::int64_t grid_ = 1;
     std::int64_t prev_start0_ = 0;
+    // Mixed predictions only (block type 6).
+    std::unique_ptr<MixPredictor> mixer_;
+    std::uint64_t turn_hist_ = 0;  // turns (2D, 3 bits each) or directions (N-D, 9 bits each), latest lowest
+    std::uint64_t l_hist_ = 0;     // bit lengths of the leading totals, 4 bits each, latest lowest
+    std::uint32_t shape1_ = kNone, shape2_ = kNone;  // the last two shapes, across chains
+    Point from_start_{};           // the chain's position relative to its start
 };
 
 std::int64_t steps_of(Profile p, const Segment& s, int axes) {
@@ -703,6 +769,7 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
             c.nsteps += static_cast<std::uint64_t>(steps_of(p, s, block.axes));
         }
     std::string out;
+    if constexpr (kMixedIo<Io>) put_u8(out, kMixedSegment);
     put_varint(out, c.nchains);
     put_varint(out, c.nsegments);
     put_varint(out, c.nsteps);
@@ -751,7 +818,11 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
 
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs, const WindowView* window,
-                                bool timed) {
+                                bool timed, bool mixed) {
+    if (mixed) {
+        MixEncIo io;
+        return segment_model_with(io, block, p, segs, window, timed);
+    }
     EncIo io;
     return segment_model_with(io, block, p, segs, window, timed);
 }
@@ -765,11 +836,19 @@ std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, 
     return out;
 }
 
-Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
-                                Block& out, BlockCounts& counts, const std::string& where,
-                                const WindowView* window, SegmentItems* items, bool timed) {
+namespace {
+
+template <class Io>
+Result<void> read_segment_model_with(std::string_view payload, Profile p, int axes, bool expand,
+                                     Block& out, BlockCounts& counts, const std::string& where,
+                                     const WindowView* window, SegmentItems* items, bool timed) {
     Cursor cur(payload);
     Counts c;
+    if constexpr (kMixedIo<Io>) {
+        unsigned kind;
+        if (!cur.u8(kind) || kind != kMixedSegment)
+            return make_error(Errc::corrupt, where + " byte 0: not a mixed segment model");
+    }
     if (!cur.varint(c.nchains) || !cur.varint(c.nsegments) || !cur.varint(c.nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
     if (c.nchains > kMaxBlockChains || c.nsegments > kMaxBlockSteps || c.nsteps > kMaxBlockSteps)
@@ -781,8 +860,11 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
-    DecIo io(payload.substr(base));
-    SegmentCoder<DecIo> coder(io, p, axes, timed);
+    Io io = [&] {
+        if constexpr (kMixedIo<Io>) return Io(payload.substr(base), nullptr);  // the coder sets the predictor
+        else return Io(payload.substr(base));
+    }();
+    SegmentCoder<Io> coder(io, p, axes, timed);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);
     if (items) *items = SegmentItems{};
@@ -827,6 +909,16 @@ Result<void> read_segment_model(std::string_view payload, Profile p, int axes, b
     counts.segments += c.nsegments;
     counts.steps += c.nsteps;
     return {};
+}
+
+}  // namespace
+
+Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
+                                Block& out, BlockCounts& counts, const std::string& where,
+                                const WindowView* window, SegmentItems* items, bool timed, bool mixed) {
+    if (mixed)
+        return read_segment_model_with<MixDecIo>(payload, p, axes, expand, out, counts, where, window, items, timed);
+    return read_segment_model_with<DecIo>(payload, p, axes, expand, out, counts, where, window, items, timed);
 }
 
 }  // namespace stepzip::stz

@@ -15,6 +15,7 @@
 #include <new>
 #include <unordered_map>
 
+#include "mix.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
 
@@ -28,6 +29,7 @@ constexpr std::int64_t kFreemanDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr std::int64_t kFreemanDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr std::size_t kMinMatch = 12;    // steps hashed to find a match
 constexpr int kMaxStepOrder = 4;  // previous turns in the direction context
+constexpr int kStepMixModels = 6;  // hashed context models of the mixed predictions
 
 int cap(int v, int hi) { return v < hi ? v : hi; }
 int len_bucket(std::uint64_t len) {
@@ -247,7 +249,13 @@ public:
     StepCoder(Io& io, int order, bool predict_starts, StepHistory* shared = nullptr)
         : io_(io), ctx_(std::make_unique<StepContexts>()), mask_((1u << (3 * order)) - 1),
           predict_starts_(predict_starts), own_(shared ? nullptr : std::make_unique<StepHistory>()),
-          h_(shared ? *shared : *own_) {}
+          h_(shared ? *shared : *own_) {
+        if constexpr (kMixedIo<Io>) {
+            static_assert(sizeof(StepContexts) % sizeof(Prob) == 0);
+            mixer_ = std::make_unique<MixPredictor>(kStepMixModels, reinterpret_cast<const Prob*>(ctx_.get()));
+            io_.m = mixer_.get();
+        }
+    }
 
     // Starts the block from the window (docs/FORMAT.md "Window"): the
     // window's symbols enter the history and the match table in order; the
@@ -261,6 +269,9 @@ public:
     Point start(const Point& want) {
         Point d{};
         bool hit = false;
+        dx_ = dy_ = 0;
+        in_chain_ = 0;
+        io_.field(3);
         if (predict_starts_ && ptr_ >= 0) {
             // The match predicts a chain start when it points at one.
             const auto& pos = h_.start_pos;
@@ -320,17 +331,21 @@ private:
             sym = kEndSymbol;  // forced: no bits
         } else {
             const int pred = ptr_ >= 0 ? h_.hist[static_cast<std::size_t>(ptr_)] : -1;
+            if constexpr (kMixedIo<I>) symbol_contexts(io, pred);
             bool hit = false;
+            io.field(0);
             if (pred >= 0) hit = io.bit(ctx_->hit[len_bucket(len_)][pred == kEndSymbol], want == pred);
             if (hit) {
                 sym = pred;
             } else {
                 bool end = false;
+                io.field(1);
                 if (pred != kEndSymbol)
                     end = io.bit(ctx_->end[(at_start_point ? 1 : 0) + (first ? 2 : 0)], want == kEndSymbol);
                 if (end) {
                     sym = kEndSymbol;
                 } else {
+                    io.field(2);
                     const int t = static_cast<int>(code_tree(
                         io, ctx_->turn[turns_ & mask_], 3, static_cast<unsigned>((want - prev_) & 7)));
                     sym = (prev_ + t) & 7;
@@ -339,10 +354,49 @@ private:
         }
         push(sym);
         if (sym != kEndSymbol) {
-            turns_ = ((turns_ << 3) | static_cast<unsigned>((sym - prev_) & 7)) & 4095u;
+            const unsigned turn = static_cast<unsigned>((sym - prev_) & 7);
+            turns_ = ((turns_ << 3) | turn) & 4095u;
+            if constexpr (kMixedIo<I>) {
+                history_ = (history_ << 3) | turn;
+                dx_ += kFreemanDx[sym];
+                dy_ += kFreemanDy[sym];
+                ++in_chain_;
+                if (turn == 0) {
+                    ++run_;
+                } else {
+                    runs_ = (runs_ << 8) | (static_cast<std::uint64_t>(cap(run_, 31)) << 3) | turn;
+                    run_ = 1;
+                }
+            }
             prev_ = sym;
         }
         return sym;
+    }
+
+    // The hashed contexts of the mixed predictions for the next symbol
+    // (docs/FORMAT.md "Step-model contexts").
+    template <class I>
+    void symbol_contexts(I& io, int pred) {
+        const auto p = static_cast<std::uint64_t>(prev_);
+        mix_context(io, 0, ctx_join(p, history_ & 0x3FFFFu));  // six turns
+        mix_context(io, 1, ctx_join(p, history_ & 0x3FFFFFFFu));  // ten turns
+        mix_context(io, 2, ctx_join(ctx_join(p, static_cast<std::uint64_t>(pred + 1)),
+                                    static_cast<std::uint64_t>(len_bucket(len_)) << 3 | (history_ & 7)));
+        // The digital straight segment being drawn: the current run of one
+        // direction and the runs and turns before it.
+        mix_context(io, 3, ctx_join(ctx_join(p, static_cast<std::uint64_t>(cap(run_, 31))), runs_ & 0xFFFFFFu));
+        // Closure: where the chain start lies.
+        const std::int64_t ax = std::llabs(dx_), ay = std::llabs(dy_);
+        std::uint64_t where = 0;
+        if (ax <= 15 && ay <= 15)
+            where = static_cast<std::uint64_t>((dx_ + 16) * 32 + (dy_ + 16));
+        else
+            where = 2048 + static_cast<std::uint64_t>((dx_ < 0) * 2 + (dy_ < 0)) * 256 +
+                    static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(ax)), 15)) * 16 +
+                    static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(ay)), 15));
+        mix_context(io, 4, ctx_join(ctx_join(p, where), history_ & 7));
+        mix_context(io, 5, ctx_join(ctx_join(p, history_ & 0x1FFu),
+                                    static_cast<std::uint64_t>(cap(bit_length(in_chain_), 15))));
     }
 
     void push(int sym) {
@@ -369,23 +423,32 @@ private:
     std::uint64_t len_ = 0;
     int prev_ = 0;
     unsigned turns_ = 0;
+    // Mixed predictions only (block type 6).
+    std::unique_ptr<MixPredictor> mixer_;
+    std::uint64_t history_ = 0;  // turns, 3 bits each, latest lowest (across chains)
+    std::uint64_t runs_ = 0;     // finished runs: (length (cap 31) << 3 | turn after it), 8 bits each
+    int run_ = 0;                // steps in the current direction
+    std::int64_t dx_ = 0, dy_ = 0;  // position relative to the chain's start
+    std::uint64_t in_chain_ = 0;
 };
 
 }  // namespace
 
 namespace {
 
-std::string write_step_model_order(const Block& block, int order, const WindowView* window) {
+template <class Io>
+std::string write_step_model_with(const Block& block, int order, const WindowView* window) {
     Counts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
     std::string out;
+    if constexpr (kMixedIo<Io>) put_u8(out, kMixedStep);
     put_varint(out, c.nchains);
     put_varint(out, c.nsteps);
     put_u8(out, static_cast<unsigned>(order));
     put_layout(out, block.layout);
-    EncIo io;
-    StepCoder<EncIo> coder(io, order, true);
+    Io io;
+    StepCoder<Io> coder(io, order, true);
     if (window) coder.prime(*window);
     Point ref{};
     for (const Chain& chain : block.chains) {
@@ -409,7 +472,16 @@ std::string write_step_model_order(const Block& block, int order, const WindowVi
     return out;
 }
 
+std::string write_step_model_order(const Block& block, int order, const WindowView* window) {
+    return write_step_model_with<EncIo>(block, order, window);
+}
+
 }  // namespace
+
+std::string write_mixed_step_model(const Block& block, int order, const WindowView* window) {
+    if (block.axes != 2 || order < 0 || order > kMaxStepOrder) return {};
+    return write_step_model_with<MixEncIo>(block, order, window);
+}
 
 std::string write_step_model(const Block& block, int order, const WindowView* window, int* chosen) {
     if (block.axes != 2) return {};
@@ -432,13 +504,21 @@ std::string write_step_model(const Block& block, int order, const WindowView* wi
     return best;
 }
 
-Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
-                             BlockCounts& counts, const std::string& where, const WindowView* window,
-                             int version, StepHistory* running) {
+namespace {
+
+template <class Io>
+Result<void> read_step_model_with(std::string_view payload, int axes, bool expand, Block& out,
+                                  BlockCounts& counts, const std::string& where, const WindowView* window,
+                                  int version, StepHistory* running) {
     Cursor cur(payload);
     if (axes != 2) return make_error(Errc::corrupt, where + " byte 0: step-model block on " +
                                                         std::to_string(axes) + " axes");
     Counts c;
+    if constexpr (kMixedIo<Io>) {
+        unsigned kind;
+        if (!cur.u8(kind) || kind != kMixedStep)
+            return make_error(Errc::corrupt, where + " byte 0: not a mixed step model");
+    }
     if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
     if (c.nchains > kMaxBlockChains || c.nsteps > kMaxBlockSteps)
@@ -449,8 +529,11 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
-    DecIo io(payload.substr(base));
-    StepCoder<DecIo> coder(io, static_cast<int>(order), version >= 2, window ? running : nullptr);
+    Io io = [&] {
+        if constexpr (kMixedIo<Io>) return Io(payload.substr(base), nullptr);  // the coder sets the predictor
+        else return Io(payload.substr(base));
+    }();
+    StepCoder<Io> coder(io, static_cast<int>(order), version >= 2, window ? running : nullptr);
     if (window && !running) coder.prime(*window);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const std::string& what) {
@@ -474,6 +557,16 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
     counts.chains += c.nchains;
     counts.steps += c.nsteps;
     return {};
+}
+
+}  // namespace
+
+Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
+                             BlockCounts& counts, const std::string& where, const WindowView* window,
+                             int version, StepHistory* running, bool mixed) {
+    if (mixed)
+        return read_step_model_with<MixDecIo>(payload, axes, expand, out, counts, where, window, version, running);
+    return read_step_model_with<DecIo>(payload, axes, expand, out, counts, where, window, version, running);
 }
 
 }  // namespace stepzip::stz

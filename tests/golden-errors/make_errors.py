@@ -160,6 +160,34 @@ files.update({
     'v2_partial_second_magic': ('corrupt', 'byte %d' % len(good2), good2 + good2[:3]),
     'v2_truncated_second_frame': ('truncated', 'byte %d' % (len(good2) + end2), good2 + good2[:end2]),
 })
+# Block type 6 (docs/FORMAT.md 1.10), from tests/golden/v2/strong_hershey.fc.stz:
+# one mixed-model block of the segment model, no window.
+strong = open(os.path.join(here, '..', 'golden', 'v2', 'strong_hershey.fc.stz'), 'rb').read()
+assert strong[8] == 6, 'v2/strong_hershey.fc.stz should hold a mixed-model block'
+s_csize, s_payload = varint_at(strong, 9)
+assert strong[s_payload] == 0, 'v2/strong_hershey.fc.stz should hold a mixed segment model'
+
+
+def varint(v):
+    out = bytearray()
+    while True:
+        if v < 0x80:
+            out.append(v)
+            return bytes(out)
+        out.append((v & 0x7F) | 0x80)
+        v >>= 7
+
+
+s_end = s_payload + s_csize
+short = strong[:9] + varint(s_csize - 1) + strong[s_payload:s_end - 1]
+short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
+files.update({
+    # The model byte names no model.
+    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 2))),
+    # The range-coded stream lost its last byte (size and checksum redone):
+    # the decoder notices at the payload's end.
+    'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')

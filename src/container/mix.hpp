@@ -1,0 +1,269 @@
+// Mixed predictions of the strong tier (docs/FORMAT.md "Mixed predictions",
+// block type 6): every binary decision of the segment and step models is
+// predicted by its own adaptive context (the `Prob` the type 3/4 coder uses)
+// and by a few hashed context models that the coder names per item; the
+// predictions are mixed in the logistic domain by online-learned weights
+// chosen by a small context, and refined by an adaptive probability map.
+// The idea is lpaq1's (a mixer of stretched probabilities trained by the
+// coding error, then secondary estimation), applied to the models' binary
+// decisions instead of bytes. Integer arithmetic only: any decoder that
+// follows FORMAT.md reproduces every probability.
+//
+// `MixEncIo` / `MixDecIo` stand in for `EncIo` / `DecIo`: the same coder
+// templates run with either, so a type 6 payload and a type 3/4 payload
+// differ only in the probabilities given to the range coder.
+// Complexity: O(kMixMaxModels) per bit; memory ~ kMixModels * 4 MiB + 4 MiB.
+// Not thread-safe (one predictor per block).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "range_coder.hpp"
+
+namespace stepzip::stz {
+
+/// Hashed context models per predictor, at most.
+inline constexpr int kMixMaxModels = 6;
+/// log2 of the entries of each hashed table.
+inline constexpr int kMixTableBits = 20;
+/// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
+/// the slot's low 4 bits; mixer 2: the primary prediction's confidence).
+inline constexpr int kMixSets = 256;
+/// Rows of the adaptive probability map (by slot).
+inline constexpr int kApmRows = 1 << 12;
+
+namespace mixdetail {
+// squash(x) = 65536 / (1 + e^(-x/256)) at x = -2048, -1920, ..., 2048.
+inline constexpr std::int32_t kSquashPoints[33] = {
+    22,    36,    60,    98,    162,   267,   439,   720,   1179,  1921,  3108,
+    4971,  7812,  11955, 17625, 24743, 32768, 40793, 47911, 53581, 57724, 60565,
+    62428, 63615, 64357, 64816, 65097, 65269, 65374, 65438, 65476, 65500, 65514};
+
+/// Probability of a 1 (1..65535) of a stretched value x (clamped to +-2047):
+/// linear interpolation between the 33 points.
+constexpr std::int32_t squash(std::int32_t x) {
+    if (x > 2047) x = 2047;
+    if (x < -2047) x = -2047;
+    const std::int32_t i = (x + 2048) >> 7, w = (x + 2048) & 127;
+    return (kSquashPoints[i] * (128 - w) + kSquashPoints[i + 1] * w + 64) >> 7;
+}
+
+/// stretch(p) = the smallest x in -2047..2047 with squash(x) >> 4 >= p >> 4
+/// (2047 when none): the inverse of squash on 12-bit probabilities.
+struct StretchTable {
+    std::int16_t v[4096];
+    constexpr StretchTable() : v() {
+        int next = 0;
+        for (std::int32_t x = -2047; x <= 2047; ++x) {
+            const int top = squash(x) >> 4;
+            for (; next <= top; ++next) v[next] = static_cast<std::int16_t>(x);
+        }
+        for (; next < 4096; ++next) v[next] = 2047;
+    }
+};
+inline constexpr StretchTable kStretch{};
+
+// The hashed models' adaptation: as section 1.4's with the shift capped at
+// 6 instead of 5 (they see fewer bits each).
+inline constexpr detail::ShiftTable<6> kSlowShift{};
+
+// A hashed model's context: p XOR 0x8000 (so that all-zero memory is the
+// initial p = 32768, n = 0, and a table costs only the pages it touches).
+struct HashedProb {
+    std::uint16_t px;
+    std::uint16_t n;
+    std::uint32_t p() const noexcept { return px ^ 0x8000u; }
+};
+
+[[gnu::always_inline]] inline void update_slow(HashedProb& pr, int bit) noexcept {
+    const unsigned shift = kSlowShift.v[pr.n];
+    const unsigned p = pr.p();
+    pr.px = static_cast<std::uint16_t>((bit ? p - (p >> shift) : p + ((65536u - p) >> shift)) ^ 0x8000u);
+    pr.n = static_cast<std::uint16_t>(pr.n + (pr.n < 255));
+}
+
+struct FreeDeleter {
+    void operator()(void* p) const noexcept { std::free(p); }
+};
+}  // namespace mixdetail
+
+/// Stretched probability of a 1, p1 in 1..65535 (16-bit).
+[[gnu::always_inline]] inline std::int32_t stretch(std::uint32_t p1) noexcept {
+    return mixdetail::kStretch.v[p1 >> 4];
+}
+
+/// The mixing predictor of one block (docs/FORMAT.md "Mixed predictions").
+class MixPredictor {
+public:
+    /// `models` hashed context models (1..kMixMaxModels); `base`: the
+    /// coder's table of primary contexts (a decision's slot is its primary
+    /// context's index in it).
+    MixPredictor(int models, const Prob* base)
+        : n_(models), base_(base),
+          tables_(static_cast<mixdetail::HashedProb*>(std::calloc(static_cast<std::size_t>(models) << kMixTableBits,
+                                                        sizeof(mixdetail::HashedProb)))),
+          apm_(static_cast<std::size_t>(kApmRows) * 33) {
+        if (!tables_) throw std::bad_alloc();
+        for (int s = 0; s < 2 * kMixSets; ++s) {
+            std::int32_t* w = &weights_[static_cast<std::size_t>(s) * kInputs];
+            w[0] = kPrimaryWeight;
+            for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
+        }
+        for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows); ++r)
+            for (int j = 0; j < 33; ++j) apm_[r * 33 + static_cast<std::size_t>(j)] =
+                static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+    }
+
+    /// The context of hashed model k (0 <= k < models) until it is set again.
+    void set_context(int k, std::uint64_t v) noexcept {
+        hash_[static_cast<std::size_t>(k)] = (v + static_cast<std::uint64_t>(k + 1)) * kHashA;
+    }
+    /// The field of the next decisions (0..15): selects the weight set.
+    void select(int field) noexcept { field_ = field & 15; }
+
+    /// Probability (1..65535) that the decision of primary context `pr` is 1.
+    [[gnu::always_inline]] std::uint32_t predict(const Prob& pr) noexcept {
+        const std::uint64_t slot =
+            (reinterpret_cast<std::uintptr_t>(&pr) - reinterpret_cast<std::uintptr_t>(base_)) / sizeof(Prob);
+        const std::uint64_t group = slot >> 4;
+        const std::size_t low = static_cast<std::size_t>(slot & 15);
+        x_[0] = stretch(65536u - pr.p);
+        for (int k = 0; k < n_; ++k) {
+            const std::uint64_t h = (hash_[static_cast<std::size_t>(k)] ^ (group * kHashB)) * kHashA;
+            const std::size_t i = ((static_cast<std::size_t>(k) << kMixTableBits) |
+                                   (static_cast<std::size_t>(h >> (64 - (kMixTableBits - 4))) << 4)) | low;
+            entry_[static_cast<std::size_t>(k)] = &tables_[i];
+            x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p());
+        }
+        x_[static_cast<std::size_t>(n_) + 1] = 256;
+        // Two mixers, each its weight set's dot product; their outputs averaged.
+        w1_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
+        w2_ = &weights_[(static_cast<std::size_t>(kMixSets + field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1)) * kInputs];
+        const std::int32_t s1 = dot(w1_), s2 = dot(w2_);
+        out1_ = mixdetail::squash(s1);
+        out2_ = mixdetail::squash(s2);
+        const std::int32_t s = (s1 + s2) >> 1;
+        const std::int32_t mixed = mixdetail::squash(s);
+        // Adaptive probability map on the slot: interpolated between the two
+        // nearest of 33 points; the nearer one is trained.
+        const std::int32_t pos = s + 2048;
+        const std::int32_t j = pos >> 7, frac = pos & 127;
+        std::uint16_t* row = &apm_[static_cast<std::size_t>(slot & (kApmRows - 1)) * 33];
+        const std::int32_t refined = (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
+        apm_at_ = &row[j + (frac >> 6)];
+        std::int32_t p = (mixed + 3 * refined) >> 2;
+        if (p < 1) p = 1;
+        if (p > 65535) p = 65535;
+        return static_cast<std::uint32_t>(p);
+    }
+
+    /// Trains every part on the coded bit (after predict()).
+    [[gnu::always_inline]] void update(Prob& pr, int bit) noexcept {
+        train(w1_, out1_, bit);
+        train(w2_, out2_, bit);
+        stz::update(pr, bit);
+        for (int k = 0; k < n_; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
+        const std::int32_t target = bit ? 65535 : 0;
+        *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> kApmRate));
+    }
+
+private:
+    // A mixer's output, stretched: the dot product of its weights (16.16
+    // fixed point) and the inputs, clamped to +-2047.
+    [[gnu::always_inline]] std::int32_t dot(const std::int32_t* w) const noexcept {
+        std::int64_t d = 0;
+        for (int k = 0; k <= n_ + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
+        d >>= 16;
+        return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
+    }
+    // Each weight moves by input * error * kRate / 2^16, the error that of
+    // the mixer's own output; weights stay within +-kMaxWeight.
+    [[gnu::always_inline]] void train(std::int32_t* w, std::int32_t out, int bit) noexcept {
+        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kRate;
+        for (int k = 0; k <= n_ + 1; ++k) {
+            std::int64_t v = w[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
+            if (v > kMaxWeight) v = kMaxWeight;
+            if (v < -kMaxWeight) v = -kMaxWeight;
+            w[k] = static_cast<std::int32_t>(v);
+        }
+    }
+
+    static constexpr int kInputs = kMixMaxModels + 2;  // primary, models, bias
+    // Chosen on corpora/glyphs/dejavu-8.fc, plotter/hershey-grbl.fc and
+    // random/walk-8.fc (docs/benchmarks.md).
+    static constexpr std::int32_t kPrimaryWeight = 40960;  // 0.625
+    static constexpr std::int32_t kModelWeight = 12288;    // 0.1875
+    static constexpr std::int32_t kMaxWeight = 1 << 22;
+    static constexpr std::int64_t kRate = 3;
+    static constexpr int kApmRate = 7;
+    static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
+
+    int n_;
+    const Prob* base_;
+    std::unique_ptr<mixdetail::HashedProb[], mixdetail::FreeDeleter> tables_;  // calloc: pages on first touch
+    std::vector<std::uint16_t> apm_;
+    std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
+    std::array<std::uint64_t, kMixMaxModels> hash_{};
+    std::array<std::int32_t, kInputs> x_{};
+    std::array<mixdetail::HashedProb*, kMixMaxModels> entry_{};
+    std::int32_t* w1_ = nullptr;
+    std::int32_t* w2_ = nullptr;
+    std::int32_t out1_ = 32768, out2_ = 32768;
+    std::uint16_t* apm_at_ = nullptr;
+    int field_ = 0;
+};
+
+/// Range encoder driven by a MixPredictor (the predictor outlives it).
+struct MixEncIo {
+    static constexpr bool kDecode = false;
+    static constexpr bool kMixed = true;
+    RangeEncoder rc;
+    bool failed = false;
+    MixPredictor* m = nullptr;
+    void field(int k) { m->select(k); }
+    [[gnu::always_inline]] int bit(Prob& p, int b) {
+        rc.encode_p(65536u - m->predict(p), b);
+        m->update(p, b);
+        return b;
+    }
+};
+
+/// Range decoder driven by a MixPredictor. Copies share the predictor.
+struct MixDecIo {
+    static constexpr bool kDecode = true;
+    static constexpr bool kMixed = true;
+    MixDecIo(std::string_view in, MixPredictor* pred) : rc(in), m(pred) {}
+    RangeDecoder rc;
+    bool failed = false;
+    MixPredictor* m = nullptr;
+    void field(int k) { m->select(k); }
+    [[gnu::always_inline]] int bit(Prob& p, int) {
+        const int b = rc.decode_p(65536u - m->predict(p));
+        m->update(p, b);
+        return b;
+    }
+};
+
+/// Whether `Io` codes with mixed predictions (block type 6).
+template <class Io>
+inline constexpr bool kMixedIo = requires { Io::kMixed; };
+
+/// The coders name their hashed contexts through this; a no-op for the
+/// type 3/4 Io types.
+template <class Io>
+[[gnu::always_inline]] inline void mix_context(Io& io, int k, std::uint64_t v) {
+    if constexpr (kMixedIo<Io>) io.m->set_context(k, v);
+}
+
+/// A context value made of several parts (any deterministic combination
+/// would do; this one is FORMAT.md's).
+inline constexpr std::uint64_t ctx_join(std::uint64_t h, std::uint64_t v) noexcept {
+    return (h ^ v) * 0x100000001B3ull + 0x9E37u;
+}
+
+}  // namespace stepzip::stz

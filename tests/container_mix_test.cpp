@@ -1,0 +1,188 @@
+// Block type 6, mixed predictions (docs/FORMAT.md 1.10): the squash and
+// stretch tables follow their definitions; both models round-trip with
+// mixed predictions, with and without a window, and the decoder errors name
+// the payload byte; the payload bytes of small fixed inputs are pinned; the
+// strong levels write type 6 blocks only where they are smaller, and the
+// frames decode.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../src/container/block_codec.hpp"
+#include "../src/container/memory_io.hpp"
+#include "../src/container/mix.hpp"
+#include "../src/container/modeled_block.hpp"
+#include "../src/container/window.hpp"
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+#include "stepzip/segmenter.hpp"
+#include "support/pinned_blocks.hpp"
+
+namespace stepzip::stz {
+namespace {
+
+// Closed contours (squares and diamonds of random sizes, some repeated) and
+// plotter-like strokes, from a fixed seed.
+std::string contours(std::uint64_t seed, int count) {
+    std::mt19937_64 rng(seed);
+    std::vector<Chain> chains;
+    for (int i = 0; i < count; ++i) {
+        Chain c;
+        c.axes = 2;
+        c.start = {static_cast<std::int64_t>(rng() % 500), static_cast<std::int64_t>(rng() % 500)};
+        if (rng() % 3 != 0) {
+            const int a = 2 + static_cast<int>(rng() % 9), b = 2 + static_cast<int>(rng() % 9);
+            const int base = static_cast<int>(rng() % 2);  // 0: square, 1: diamond
+            for (int side = 0; side < 4; ++side)
+                for (int k = 0; k < (side % 2 ? b : a); ++k) c.steps.push_back(freeman_to_step(base + 2 * side));
+        } else {
+            int code = static_cast<int>(rng() % 8);
+            const int n = 10 + static_cast<int>(rng() % 40);
+            for (int k = 0; k < n; ++k) {
+                if (rng() % 5 == 0) code = (code + 1 + static_cast<int>(rng() % 7)) % 8;
+                c.steps.push_back(freeman_to_step(code));
+            }
+        }
+        chains.push_back(std::move(c));
+    }
+    auto t = write_chains(InputFormat::freeman, chains);
+    EXPECT_TRUE(t.ok());
+    return t.ok() ? *t : std::string();
+}
+
+TEST(MixTables, SquashFollowsItsPointsAndStretchInvertsIt) {
+    EXPECT_EQ(mixdetail::squash(0), 32768);
+    EXPECT_EQ(mixdetail::squash(-2048), mixdetail::squash(-2047));  // clamped
+    EXPECT_EQ(mixdetail::squash(5000), mixdetail::squash(2047));
+    // Between two points: the linear interpolation, rounded.
+    EXPECT_EQ(mixdetail::squash(64), (32768 * 64 + 40793 * 64 + 64) >> 7);
+    for (std::int32_t x = -2047; x < 2047; ++x) ASSERT_LE(mixdetail::squash(x), mixdetail::squash(x + 1)) << x;
+    // stretch(p): the smallest x whose squash reaches p's 12-bit bucket.
+    for (std::uint32_t p = 1; p < 65536; p += 7) {
+        const std::int32_t x = stretch(p);
+        if (x < 2047) EXPECT_GE(mixdetail::squash(x) >> 4, static_cast<std::int32_t>(p >> 4)) << p;
+        if (x > -2047) EXPECT_LT(mixdetail::squash(x - 1) >> 4, static_cast<std::int32_t>(p >> 4)) << p;
+    }
+    EXPECT_EQ(stretch(32768), 0);
+}
+
+TEST(MixedModels, SegmentModelRoundTripsWithAndWithoutWindow) {
+    const Block first = fixed_block(contours(1, 60)), b = fixed_block(contours(2, 60));
+    const auto cut_first = greedy_cut(first, Profile::eval8), cut = greedy_cut(b, Profile::eval8);
+    auto w = std::make_shared<WindowBlock>();
+    w->items = segment_items(first, cut_first);
+    const WindowView window{w};
+    for (const WindowView* view : {static_cast<const WindowView*>(nullptr), &window}) {
+        const std::string payload = write_segment_model(b, Profile::eval8, cut, view, false, true);
+        ASSERT_FALSE(payload.empty());
+        EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedSegment);
+        Block out;
+        BlockCounts counts;
+        auto r = read_segment_model(payload, Profile::eval8, 2, true, out, counts, "t", view, nullptr, false, true);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        EXPECT_EQ(out.chains, b.chains);
+        // Read as a type 3 payload, the same bytes do not decode to the block.
+        Block plain;
+        BlockCounts unused;
+        auto p = read_segment_model(payload.substr(1), Profile::eval8, 2, true, plain, unused, "t", view);
+        EXPECT_TRUE(!p.ok() || plain.chains != b.chains);
+    }
+}
+
+TEST(MixedModels, StepModelRoundTripsWithAndWithoutWindow) {
+    const Block first = fixed_block(contours(3, 40)), b = fixed_block(contours(4, 40));
+    auto w = std::make_shared<WindowBlock>();
+    add_steps(*w, first);
+    const WindowView window{w};
+    for (const WindowView* view : {static_cast<const WindowView*>(nullptr), &window})
+        for (int order = 0; order <= 4; ++order) {
+            const std::string payload = write_mixed_step_model(b, order, view);
+            ASSERT_FALSE(payload.empty());
+            EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedStep);
+            Block out;
+            BlockCounts counts;
+            auto r = read_step_model(payload, 2, true, out, counts, "t", view, kFormatVersion, nullptr, true);
+            ASSERT_TRUE(r.ok()) << r.error().message;
+            EXPECT_EQ(out.chains, b.chains);
+            EXPECT_EQ(counts.chains, b.chains.size());
+        }
+}
+
+TEST(MixedModels, DecoderErrorsNameThePayloadByte) {
+    const Block b = fixed_block(contours(5, 30));
+    const std::string seg = write_segment_model(b, Profile::eval8, greedy_cut(b, Profile::eval8), nullptr, false, true);
+    const std::string step = write_mixed_step_model(b, 2);
+    Block out;
+    BlockCounts counts;
+    // The model byte names the other model.
+    auto r = read_segment_model(step, Profile::eval8, 2, true, out, counts, "blk", nullptr, nullptr, false, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::corrupt);
+    EXPECT_EQ(r.error().message.rfind("blk byte 0: ", 0), 0u) << r.error().message;
+    r = read_step_model(seg, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message.rfind("blk byte 0: ", 0), 0u) << r.error().message;
+    // The stream cut short: the error is at or before the payload's end.
+    for (const std::string* p : {&seg, &step}) {
+        const std::string cut = p->substr(0, p->size() - 1);
+        auto e = p == &seg ? read_segment_model(cut, Profile::eval8, 2, true, out, counts, "blk", nullptr, nullptr,
+                                                false, true)
+                           : read_step_model(cut, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+        ASSERT_FALSE(e.ok());
+        EXPECT_EQ(e.error().code, Errc::corrupt);
+        EXPECT_EQ(e.error().message.rfind("blk byte ", 0), 0u) << e.error().message;
+    }
+}
+
+// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.10).
+constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
+
+TEST(MixedModels, PayloadBytesArePinned) {
+    const Block b = fixed_block(kTwoChains);
+    EXPECT_EQ(hex(write_segment_model(b, Profile::eval8, greedy_cut(b, Profile::eval8), nullptr, false, true)),
+              "00 02 04 21 02 00 00 01 e4 cd 11 64 15 4a 22 e7 d3 82 39 8a bc");
+    EXPECT_EQ(hex(write_mixed_step_model(b, 2)), "01 02 21 02 00 00 00 67 71 a3 69 a3 57 77 27 1b 35 1c bd 88");
+}
+
+std::size_t count_blocks(const std::string& frame, unsigned type) {
+    std::size_t n = 0, pos = kFrameHeaderSize;
+    while (pos < frame.size() && frame[pos] != 0) {
+        const unsigned t = static_cast<unsigned char>(frame[pos++]) & 7u;
+        auto varint = [&] {
+            std::uint64_t v = 0;
+            for (int shift = 0;; shift += 7) {
+                const auto c = static_cast<unsigned char>(frame.at(pos++));
+                v |= static_cast<std::uint64_t>(c & 0x7F) << shift;
+                if (c < 0x80) return v;
+            }
+        };
+        const std::uint64_t csize = varint();
+        if (t == kChains || t == kRaw) varint();
+        pos += static_cast<std::size_t>(csize) + kBlockChecksumSize;
+        if (t == type) ++n;
+    }
+    return n;
+}
+
+TEST(MixedModels, StrongLevelsWriteTypeSixWhereSmallerAndTheFrameDecodes) {
+    const std::string input = contours(6, 400) + contours(7, 400);
+    for (int level : {3, 10, 19}) {
+        CompressOptions opt;
+        opt.level = level;
+        opt.block_steps = 8192;
+        opt.window_log = 16;
+        auto z = compress(input, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, input);
+        const std::size_t mixed = count_blocks(*z, kMixedModel);
+        if (level < 10) EXPECT_EQ(mixed, 0u);
+        else EXPECT_GT(mixed, 0u) << "level " << level;
+    }
+}
+
+}  // namespace
+}  // namespace stepzip::stz
