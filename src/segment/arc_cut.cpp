@@ -2,10 +2,12 @@
 // `segment --arc-method` writes as G2/G3 and G1 (include/stepzip/segment/arc.hpp).
 //
 // Walk: at each position the arc recognizer is asked for the longest arc
-// (longest_arc, at most kCutMaxDrawn centres drawn). An arc counts only when
+// (longest_arc, at most kCutMaxDrawn centres drawn, ends near the circle). An arc counts only when
 // it bows by at least kArcMinBow steps from its chord (flatter runs are
-// digital straight lines as far as the steps show) and its steps would take
-// at least kArcMinLines default-phase lines (else it saves no move). Of the arc starts within
+// digital straight lines as far as the steps show) and the lines from the
+// previous arc to its start plus the arc are at least two moves fewer than
+// the lines from the previous arc to its end (a corner drawn round saves
+// nothing once the lines next to it are split). Of the arc starts within
 // the lookahead, the one whose arc ends farthest wins (a line that runs
 // into an arc tangentially would otherwise start the arc a few steps early,
 // on a point off its circle). At the arc's end, the end is moved back by up
@@ -18,6 +20,7 @@
 // per arc found; O(n) for the lines.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "stepzip/segment/arc.hpp"
 #include "stepzip/vectors.hpp"
@@ -29,26 +32,15 @@ namespace {
 // Smallest bow (largest distance of an arc's points from its chord, or from
 // its start when it closes) of an arc the cut takes.
 constexpr double kArcMinBow = 2.0;
-// Fewest default-phase lines that an arc the cut takes must stand for: an
-// arc that replaces two lines only (a corner drawn round) splits the lines
-// next to it and saves nothing.
-constexpr std::size_t kArcMinLines = 3;
 // Candidate centres drawn per search in the cut (ArcSearchOptions::max_drawn).
-constexpr std::size_t kCutMaxDrawn = 16;
+constexpr std::size_t kCutMaxDrawn = 64;
 
-// The arc at the front of `steps`, if it bows enough and stands for enough
-// lines.
-ArcFit arc_at(ArcMethod method, std::span<const Step> steps, ArcSearchOptions o,
-              Profile profile, SegmenterKind kind, std::vector<Segment>& lines) {
+// The arc at the front of `steps`, if it bows enough.
+ArcFit arc_at(ArcMethod method, std::span<const Step> steps, ArcSearchOptions o) {
     o.min_bow = std::max(o.min_bow, kArcMinBow);
     if (o.max_drawn == 0) o.max_drawn = kCutMaxDrawn;
-    ArcFit f = longest_arc(method, steps, o);
-    if (f.length == 0) return f;
-    lines.clear();
-    if (!segment_default_phase(steps.first(f.length), 2, profile, lines, kind) ||
-        lines.size() < kArcMinLines)
-        return ArcFit{};
-    return f;
+    o.near_ends = true;
+    return longest_arc(method, steps, o);
 }
 
 // `fit` cut back to its first k steps, when the arc to that end reproduces them.
@@ -84,7 +76,16 @@ Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile p
     const ArcSearchOptions& o = options.search;
     const std::size_t n = steps.size();
     std::vector<Step> scratch;
-    std::vector<Segment> lines, probe;
+    std::vector<Segment> lines;
+    // Default-phase lines for steps[from, to).
+    auto count_lines = [&](std::size_t from, std::size_t to) -> std::size_t {
+        if (from >= to) return 0;
+        lines.clear();
+        if (!segment_default_phase(steps.subspan(from, to - from), axes, profile, lines,
+                                   options.lines))
+            return SIZE_MAX / 4;
+        return lines.size();
+    };
     auto flush_lines = [&](std::size_t from, std::size_t to) -> Result<void> {
         if (from >= to) return {};
         lines.clear();
@@ -104,7 +105,7 @@ Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile p
 
     std::size_t gap = 0, pos = 0;
     while (pos < n) {
-        ArcFit fit = arc_at(method, steps.subspan(pos), o, profile, options.lines, probe);
+        ArcFit fit = arc_at(method, steps.subspan(pos), o);
         if (fit.length == 0) {
             ++pos;
             continue;
@@ -112,7 +113,7 @@ Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile p
         // The start, among the next few, whose arc ends farthest.
         std::size_t start = pos;
         for (std::size_t d = 1; d <= options.lookahead && pos + d < start + fit.length; ++d) {
-            const ArcFit f = arc_at(method, steps.subspan(pos + d), o, profile, options.lines, probe);
+            const ArcFit f = arc_at(method, steps.subspan(pos + d), o);
             if (f.length > 0 && pos + d + f.length > start + fit.length) {
                 start = pos + d;
                 fit = f;
@@ -132,13 +133,22 @@ Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile p
                 if (back == 0) reach = n;
                 break;
             }
-            const ArcFit next = arc_at(method, steps.subspan(e), o, profile, options.lines, probe);
-            const std::size_t r = next.length > 0 ? e + next.length : 0;
+            const ArcFit next = arc_at(method, steps.subspan(e), o);
+            // A next arc counts when it stands for three lines or more (an
+            // arc's tail and a line's head drawn round do not).
+            const bool counts = next.length > 0 && count_lines(e, e + next.length) > 2;
+            const std::size_t r = counts ? e + next.length : 0;
             if (r > reach) {
                 reach = r;
                 chosen = cut;
                 end = e;
             }
+        }
+        // The arc must save a move over the lines from the last arc to its
+        // end, one more move counted for the line it may split after it.
+        if (count_lines(gap, start) + 2 >= count_lines(gap, end)) {
+            pos = start + 1;
+            continue;
         }
         if (auto r = flush_lines(gap, start); !r) return r;
         ArcCutMove m;

@@ -117,7 +117,7 @@ struct AboutResult {
 AboutResult about(ArcMethod method, std::span<const Step> steps,
                   const std::vector<std::pair<std::int64_t, std::int64_t>>& pts, std::int64_t cx,
                   std::int64_t cy, bool ccw, std::size_t floor, std::vector<Step>& scratch,
-                  std::size_t band = SIZE_MAX) {
+                  std::size_t band = SIZE_MAX, bool near_ends = false) {
     AboutResult res;
     const std::size_t n = pts.size() - 1;
     if (n == 0 || (cx == 0 && cy == 0)) return res;
@@ -164,7 +164,7 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
     }
     const std::size_t upper = std::min(n, base + tail);
     res.bound = upper;
-    const bool per_end = short_correction(method);
+    const bool per_end = near_ends || short_correction(method);
     for (std::size_t k = upper; k > floor; --k) {
         const std::int64_t ex = pts[k].first - cx, ey = pts[k].second - cy;
         if (per_end) {
@@ -312,7 +312,8 @@ ArcFit longest_arc(ArcMethod method, std::span<const Step> steps,
             if (options.max_drawn > 0 && ++drawn > options.max_drawn) break;
             for (bool ccw : {true, false}) {
                 const std::size_t fl = std::max(best.length, min_len - 1);
-                const auto res = about(method, steps, pts, c.cx, c.cy, ccw, fl, scratch, c.band);
+                const auto res = about(method, steps, pts, c.cx, c.cy, ccw, fl, scratch, c.band,
+                                       options.near_ends);
                 if (res.length > fl) {
                     best.length = res.length;
                     best.cx = c.cx;

@@ -62,6 +62,11 @@ struct ArcSearchOptions {
     /// > 0: at most this many candidate centres are drawn per search (those
     /// with the longest bands first): faster, and may miss an arc. 0: no limit.
     std::size_t max_drawn = 0;
+    /// true: for every method, ends are tried only up to 2·| |end| − R | +
+    /// kArcTail steps past the bounds (as for evaluation, accelerated and
+    /// double_recursion always): dda and prediction arcs whose end lies far
+    /// off the circle may be missed, and large radii cost far less.
+    bool near_ends = false;
     /// > 0: also try every integer centre (cx, cy) with |cx|, |cy| <= this
     /// (exhaustive mode, for small radii and tests; (2b+1)^2 centres).
     std::int64_t exhaustive_box = 0;
@@ -134,20 +139,22 @@ struct ArcCutOptions {
 
 /// Cuts two-axis `steps` into arcs drawn by `method` and default-phase lines
 /// of `profile` (segment_default_phase). Walking the steps, a position where
-/// longest_arc() finds an arc (at most 16 centres drawn) that bows by 2
-/// steps or more from its chord and whose steps would take 3 or more
-/// default-phase lines (flatter or shorter runs are left to the lines)
-/// starts an arc: of the starts within
-/// the lookahead, the one whose arc ends farthest; its end is moved back by
-/// up to `lookahead` steps when the next arc then reaches farther. The steps
-/// between arcs are cut into lines. Appends moves whose forward
-/// interpolation (lines under the profile at the default phase, arcs by
-/// interpolate_arc with `method`) is exactly `steps` — each arc is drawn and
-/// compared when chosen; the caller's redraw (check_redraw) proves the
-/// whole. Errors: Errc::invalid_argument when `axes` is not 2; those of
-/// profile_accepts() and segment_default_phase(). Thread-safe.
+/// longest_arc() finds an arc (at most 64 centres drawn, near_ends) that bows by 2
+/// steps or more from its chord (flatter runs are left to the lines) starts
+/// an arc: of the starts within the lookahead, the one whose arc ends
+/// farthest; its end is moved back by up to `lookahead` steps when the next
+/// arc then reaches farther. The arc is taken when the lines from the
+/// previous arc to its start, plus one, are at least two fewer than the
+/// lines from the previous arc to its end; the steps between arcs are cut
+/// into lines. Appends moves whose forward interpolation (lines under the
+/// profile at the default phase, arcs by interpolate_arc with `method`) is
+/// exactly `steps` — each arc is drawn and compared when chosen; the
+/// caller's redraw (check_redraw) proves the whole. Errors:
+/// Errc::invalid_argument when `axes` is not 2; those of profile_accepts()
+/// and segment_default_phase(). Thread-safe.
 /// Cost: one longest_arc() per position outside the arcs, up to
-/// 2·lookahead more per arc, and the line cut.
+/// 2·lookahead more per arc, and the line cuts (from the previous arc, per
+/// arc found).
 Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile profile,
                                 ArcMethod method, const ArcCutOptions& options,
                                 std::vector<ArcCutMove>& out);
