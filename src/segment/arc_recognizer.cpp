@@ -8,10 +8,12 @@
 // exact by construction. What keeps the candidates few:
 //  - the band: every interpolator keeps its points within about one step of
 //    the circle through the start (their documented invariants) until the
-//    correction run that takes it to an end off the circle; so the points of
-//    a reproduced prefix stay within arc_band(method) of the circle except for at
-//    most the end allowance tail = ceil(max(2, R/8)) + kArcTail (interpolate_arc
-//    refuses an end farther than max(2, R/8) from the circle);
+//    end of its last piece; so the points of a reproduced prefix stay within
+//    arc_band(method) of the circle but for the end: a run of one axis after
+//    an end counter runs out, then at most the end allowance (the correction
+//    run; interpolate_arc refuses an end farther than max(2, R/8) from the
+//    circle): ceil(max(2, R/8)) + kArcTail, or for evaluation, accelerated
+//    and double_recursion 2·ceil(| |end| − R |) + kArcTail per end tried;
 //  - the agreement (all methods but double_recursion): an arc's path is the
 //    full circle's path from the same start until an end counter of the last
 //    quadrant piece runs out near the end, so a reproduced prefix agrees with

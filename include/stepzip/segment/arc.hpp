@@ -75,16 +75,18 @@ struct ArcSearchOptions {
 /// The length of the longest prefix of `steps` (at most max_length steps)
 /// that interpolate_arc(method, start − c, end − c, ccw) reproduces exactly,
 /// where the start is the origin, c = (cx, cy) and the end is the sum of
-/// the prefix; 0 when none has at least 1 step. Only ends k <= U are tried,
-/// U = min(band + tail, agreement + tail): `band` is the number of leading
-/// points within arc_band(method) of the circle through the start, `agreement` the
-/// common prefix of the steps and the full circle drawn from the start
-/// (methods other than double_recursion, whose path depends on its end), and
-/// tail = ceil(max(2, R/8)) + kArcTail covers the end correction run that
-/// interpolate_arc may add for an end off the circle. Candidates are tried
-/// from U down; the first reproduced one is returned.
-/// Cost: O(band) for the band, O(R) for the full circle, O(k) per candidate
-/// tried (at most U − answer + 1 of them). Thread-safe.
+/// the prefix; 0 when none has at least 1 step. Only ends k <= U are tried:
+/// with `band` the number of leading points within arc_band(method) of the
+/// circle through the start and `agreement` the common prefix of the steps
+/// and the full circle drawn from the start (methods other than
+/// double_recursion, whose path depends on its end), U is the end of the run
+/// of equal steps at min(band, agreement) (after an end counter runs out one
+/// axis moves alone) plus the end allowance ceil(max(2, R/8)) + kArcTail for
+/// the correction run that interpolate_arc may add for an end off the circle
+/// — for evaluation, accelerated and double_recursion the allowance of an
+/// end p is 2·ceil(| |p − c| − R |) + kArcTail. Ends are drawn from U down;
+/// the first reproduced one is returned (docs/algorithms/reverse.md §6).
+/// Cost: O(band), O(R) for the full circle, O(k) per end drawn. Thread-safe.
 std::size_t longest_arc_about(ArcMethod method, std::span<const Step> steps, std::int64_t cx,
                               std::int64_t cy, bool ccw,
                               std::size_t max_length = std::size_t{1} << 15);
@@ -105,14 +107,17 @@ constexpr double arc_band(ArcMethod method) noexcept {
 inline constexpr std::int64_t kArcTail = 2;
 
 /// The longest arc at the front of `steps` (two-axis steps; a step on
-/// another axis ends the search) over the candidate centres: for m = 4, 8,
-/// 16, ... the least-squares circle through the start fitted to the first m
-/// points, each integer centre within centre_box of it, while a candidate's
-/// band reaches m; plus the exhaustive box when set. Both directions are
-/// tried per centre. Ties: the first candidate found (the estimate order).
-/// Returns length 0 when no arc of at least min_length steps was found.
-/// Cost: O(m) per fit, O(band) per centre, then longest_arc_about for the
-/// centres whose bound can beat the best so far. Thread-safe.
+/// another axis ends the search) over candidate centres found from the
+/// steps: least-squares circles through the start fitted to the first m
+/// points, m = 4, 8, 16, ..., the integer centres near each fit and along
+/// the bisector of the chord to the m-th point, every centre that chord
+/// allows for m <= 16, plus the exhaustive box when set
+/// (src/segment/arc_recognizer.cpp, docs/algorithms/reverse.md §6). The
+/// candidates are drawn with longest_arc_about, both directions, in order
+/// of decreasing band (ties: the order found) while they can beat the best.
+/// Returns length 0 when no arc of at least min_length steps (and min_bow)
+/// was found. Cost: O(m) per fit, O(band) per candidate, then
+/// longest_arc_about per candidate drawn. Thread-safe.
 ArcFit longest_arc(ArcMethod method, std::span<const Step> steps,
                    const ArcSearchOptions& options = {});
 
