@@ -11,8 +11,9 @@
 // the lookahead, the one whose arc ends farthest wins (a line that runs
 // into an arc tangentially would otherwise start the arc a few steps early,
 // on a point off its circle). At the arc's end, the end is moved back by up
-// to `lookahead` steps when that lets the next arc start farther: an arc
-// often draws a few steps of what follows. The steps between arcs go to
+// to `lookahead` steps when that lets the next arc (one ending more than
+// `lookahead` steps past this arc's end) reach farther: an arc often draws
+// a few steps of what follows. The steps between arcs go to
 // segment_default_phase().
 // Invariant: every arc move is drawn and compared when chosen; the line
 // moves come from segment_default_phase, whose segments expand exactly.
@@ -134,9 +135,12 @@ Result<void> cut_arcs_and_lines(std::span<const Step> steps, int axes, Profile p
                 break;
             }
             const ArcFit next = arc_at(method, steps.subspan(e), o);
-            // A next arc counts when it stands for three lines or more (an
-            // arc's tail and a line's head drawn round do not).
-            const bool counts = next.length > 0 && count_lines(e, e + next.length) > 2;
+            // A next arc counts when it ends more than `lookahead` steps
+            // past this arc's own end and stands for three lines or more
+            // (an arc's tail and a line's head drawn round do not).
+            const bool counts = next.length > 0 &&
+                                e + next.length > start + fit.length + options.lookahead &&
+                                count_lines(e, e + next.length) > 2;
             const std::size_t r = counts ? e + next.length : 0;
             if (r > reach) {
                 reach = r;

@@ -148,7 +148,7 @@ struct ArcCutOptions {
 /// steps or more from its chord (flatter runs are left to the lines) starts
 /// an arc: of the starts within the lookahead, the one whose arc ends
 /// farthest; its end is moved back by up to `lookahead` steps when the next
-/// arc then reaches farther. The arc is taken when the lines from the
+/// arc then reaches farther (and more than `lookahead` steps past it). The arc is taken when the lines from the
 /// previous arc to its start, plus one, are at least two fewer than the
 /// lines from the previous arc to its end; the steps between arcs are cut
 /// into lines. Appends moves whose forward interpolation (lines under the
