@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,14 +21,15 @@
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/profile.hpp"
+#include "stepzip/segment/arc.hpp"
 #include "stepzip/segmenter.hpp"
 #include "stepzip/vectors.hpp"
 
 namespace stepzip::fuzz {
 
 /// The target names, as used for fuzz/seeds/<name> and tests/regressions/<name>.
-inline constexpr std::string_view kTargets[] = {"container", "freeman", "points",
-                                                "steps",     "vectors", "roundtrip"};
+inline constexpr std::string_view kTargets[] = {"container", "freeman",   "points", "steps",
+                                                "vectors",   "roundtrip", "arc"};
 
 /// Errors a chain-file or vector reader may report for bad text.
 inline bool reader_error(Errc e) {
@@ -368,6 +370,79 @@ inline std::string roundtrip_target(const std::uint8_t* data, std::size_t size) 
     return {};
 }
 
+/// Bytes -> an arc method and two-axis steps: byte 0 picks the method and
+/// the case, bytes 1..6 (case 1) an arc drawn by the method about the origin
+/// (start and end offsets in -16..15, direction), then every further byte a
+/// Freeman step (4-connected codes for the 4-connected methods). Properties:
+/// longest_arc's answer is 0 or an arc that interpolate_arc draws as exactly
+/// its first steps, and longest_arc_about at its centre finds it too; for a
+/// drawn arc, longest_arc_about about the true centre finds at least the
+/// drawn steps; cut_arcs_and_lines' moves (eval4 lines for the 4-connected
+/// methods, eval8 for the others) draw exactly the steps. At most 240 steps.
+inline std::string arc_target(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return {};
+    static constexpr ArcMethod kMethods[] = {ArcMethod::evaluation, ArcMethod::accelerated,
+                                             ArcMethod::dda, ArcMethod::prediction_correction,
+                                             ArcMethod::double_recursion};
+    const ArcMethod m = kMethods[data[0] % 5];
+    const bool eight = m == ArcMethod::accelerated || m == ArcMethod::dda ||
+                       m == ArcMethod::double_recursion;
+    std::vector<Step> steps;
+    std::size_t at = 1, drawn = 0;
+    std::int64_t sx = 0, sy = 0;
+    bool ccw = false;
+    if ((data[0] / 5) % 2 == 1 && size >= 7) {
+        const auto c = [&](std::size_t i) { return static_cast<std::int64_t>(data[i] % 32) - 16; };
+        sx = c(1);
+        sy = c(2);
+        ccw = data[5] % 2 == 1;
+        at = 7;
+        if ((sx != 0 || sy != 0) && (c(3) != 0 || c(4) != 0) &&
+            interpolate_arc(m, sx, sy, c(3), c(4), ccw, steps))
+            drawn = steps.size();
+    }
+    for (; at < size && steps.size() < 240; ++at)
+        steps.push_back(freeman_to_step(eight ? data[at] % 8 : 2 * (data[at] % 4)));
+    const std::span<const Step> all(steps);
+
+    ArcSearchOptions o;
+    o.min_length = 1 + data[0] % 9;
+    o.max_length = 1024;
+    const ArcFit f = longest_arc(m, all, o);
+    std::vector<Step> out;
+    if (f.length > 0) {
+        if (f.length > steps.size() || f.length < o.min_length)
+            return "longest_arc: length out of range";
+        if (!interpolate_arc(m, -f.cx, -f.cy, f.ex - f.cx, f.ey - f.cy, f.ccw, out) ||
+            !std::equal(out.begin(), out.end(), steps.begin(), steps.begin() + static_cast<long>(f.length)) ||
+            out.size() != f.length)
+            return "longest_arc: the arc found does not draw its steps";
+        if (longest_arc_about(m, all, f.cx, f.cy, f.ccw, o.max_length) < f.length)
+            return "longest_arc_about misses the arc longest_arc found";
+    }
+    if (drawn > 0 && longest_arc_about(m, all, -sx, -sy, ccw, o.max_length) < drawn)
+        return "longest_arc_about misses the drawn arc about its own centre";
+
+    {
+        const Profile p = eight ? Profile::eval8 : Profile::eval4;
+        std::vector<ArcCutMove> moves;
+        if (auto r = cut_arcs_and_lines(all, 2, p, m, {}, moves); !r)
+            return "cut_arcs_and_lines fails: " + describe(r.error());
+        std::vector<Step> back;
+        for (const ArcCutMove& mv : moves) {
+            if (mv.is_arc) {
+                const ArcFit& a = mv.arc;
+                if (!interpolate_arc(m, -a.cx, -a.cy, a.ex - a.cx, a.ey - a.cy, a.ccw, back))
+                    return "cut_arcs_and_lines: an arc that does not draw";
+            } else {
+                expand_segment(p, mv.line, 2, back);
+            }
+        }
+        if (back != steps) return "cut_arcs_and_lines: the moves do not draw the steps";
+    }
+    return {};
+}
+
 /// Runs target `name` on one input; nullopt for an unknown name.
 inline std::optional<std::string> run_target(std::string_view name, const std::uint8_t* d,
                                              std::size_t n) {
@@ -377,6 +452,7 @@ inline std::optional<std::string> run_target(std::string_view name, const std::u
     if (name == "steps") return steps_target(d, n);
     if (name == "vectors") return vectors_target(d, n);
     if (name == "roundtrip") return roundtrip_target(d, n);
+    if (name == "arc") return arc_target(d, n);
     return std::nullopt;
 }
 

@@ -22,6 +22,7 @@
 #include "stepzip/interpolate/feedrate.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
+#include "stepzip/segment/arc.hpp"
 #include "stepzip/segmenter.hpp"
 
 namespace stepzip {
@@ -416,13 +417,34 @@ Result<void> segment_default_phase(std::span<const Step> steps, int axes, Profil
                                    SegmenterKind kind = SegmenterKind::greedy);
 
 /// Redraws `drawing` with interpolate_drawing() under `profile` (lines at
-/// the default phase) and compares the chains with `chains`, skipping those
+/// the default phase; arcs by `arc_method`, or the profile's default arc
+/// method when nullopt) and compares the chains with `chains`, skipping those
 /// without steps: the proof that vectors written for `chains` give them
 /// back. Errors: Errc::mismatch naming the first (1-based) chain that
 /// differs and the first step where it does; errors of interpolate_drawing().
 /// Thread-safe. Complexity: O(steps).
 Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
-                          Profile profile);
+                          Profile profile, std::optional<ArcMethod> arc_method = std::nullopt);
+
+/// A chain cut into arcs and lines by cut_arcs_and_lines().
+struct ArcCutChain {
+    Chain chain;
+    std::vector<ArcCutMove> moves;
+};
+
+/// Cuts every chain with cut_arcs_and_lines() (two-axis chains only).
+/// Errors: those of cut_arcs_and_lines(), the message prefixed with
+/// "chain N: ". Thread-safe.
+Result<std::vector<ArcCutChain>> cut_chains_into_arcs(const std::vector<Chain>& chains,
+                                                      Profile profile, ArcMethod method,
+                                                      const ArcCutOptions& options = {});
+
+/// The drawing of chains cut into arcs and lines: one path per chain that has
+/// steps, starting at its start; a line move per line (its end point), an
+/// arc move per arc (MoveKind::arc_ccw or arc_cw, end point and centre
+/// absolute). write_gcode() writes them as G1 and G2 / G3 with I J.
+/// Errors: Errc::unsupported for a chain that is not two-axis. Thread-safe.
+Result<Drawing> arc_cut_to_drawing(const std::vector<ArcCutChain>& chains);
 
 /// How a segment looks, for colouring: an axis-parallel run, a 45° diagonal,
 /// or a general slope.

@@ -138,6 +138,39 @@ int write_text(const Result<std::string>& text, const std::string& source, const
     return 0;
 }
 
+// Cuts every chain into arcs drawn by `method` and default-phase lines under
+// `profile`, or under each profile when it is unset (the fewest moves win;
+// it is then set).
+Result<std::vector<ArcCutChain>> cut_arcs(const std::vector<Chain>& chains,
+                                          std::optional<Profile>& profile, ArcMethod method,
+                                          const ArcCutOptions& options,
+                                          const std::string& source) {
+    if (profile) {
+        auto r = cut_chains_into_arcs(chains, *profile, method, options);
+        if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+        return r;
+    }
+    std::optional<Error> first_error;
+    std::vector<ArcCutChain> best;
+    std::size_t fewest = 0;
+    for (Profile p : kAllProfiles) {
+        auto r = cut_chains_into_arcs(chains, p, method, options);
+        if (!r) {
+            if (!first_error) first_error = make_error(r.error().code, source + ": " + r.error().message);
+            continue;
+        }
+        std::size_t n = 0;
+        for (const ArcCutChain& ac : *r) n += ac.moves.size();
+        if (!profile || n < fewest) {
+            profile = p;
+            fewest = n;
+            best = std::move(*r);
+        }
+    }
+    if (!profile) return *first_error;
+    return best;
+}
+
 }  // namespace
 
 int cmd_segment(const std::vector<std::string>& args) {
@@ -146,7 +179,8 @@ int cmd_segment(const std::vector<std::string>& args) {
         "Unit-step chains -> vectors by reverse interpolation.\n"
         "Options");
     std::string input, format_arg, segmenter_arg = "greedy", profile_arg, to_arg, out_arg,
-                                   step_arg, feed_arg, feed_factor_arg = "seed", tick_arg;
+                                   step_arg, feed_arg, feed_factor_arg = "seed", tick_arg, arc_arg;
+    std::size_t min_arc = ArcSearchOptions{}.min_length;
     desc.add_options()
         ("help,h", "show this help")
         ("to", po::value(&to_arg), "output: gcode, hpgl, svg or json (required)")
@@ -173,6 +207,12 @@ int cmd_segment(const std::vector<std::string>& args) {
         ("feed-factor", po::value(&feed_factor_arg),
          "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
          "(x sqrt 2)")
+        ("arc-method", po::value(&arc_arg),
+         "G-code: also recover circular arcs drawn by this interpolator (evaluation, "
+         "accelerated, dda, prediction, recursion; as `interpolate --arc-method`), written "
+         "as G2/G3 X Y I J; lines elsewhere")
+        ("min-arc", po::value(&min_arc),
+         "with --arc-method: shortest arc taken, in steps (default 8)")
         ("overlay", "SVG: the diagnostic picture (unit steps, segments coloured by shape, end "
                     "points) instead of plain paths")
         ("verbose,v", "name the profile chosen on stderr")
@@ -240,6 +280,21 @@ int cmd_segment(const std::vector<std::string>& args) {
     const bool overlay = vm.count("overlay") > 0;
     if (quiet && verbose) return usage_error("segment: -q and -v conflict");
     if (overlay && *to != VectorOut::svg) return usage_error("segment: --overlay needs --to svg");
+    std::optional<ArcMethod> arc_method;
+    if (!arc_arg.empty()) {
+        arc_method = parse_arc_method(arc_arg);
+        if (!arc_method) return usage_error("segment: unknown arc method '" + arc_arg + "'");
+        if (*to != VectorOut::gcode)
+            return usage_error("segment: --arc-method needs --to gcode (the other outputs "
+                               "carry no exact arcs)");
+        if (*kind == SegmenterKind::patent)
+            return usage_error("segment: --arc-method does not go with --segmenter patent");
+        if (feed) return usage_error("segment: --arc-method does not go with --feed");
+        if (timed) return usage_error("segment: --arc-method does not go with --format timed");
+        if (min_arc < 1) return usage_error("segment: --min-arc must be at least 1");
+    } else if (vm.count("min-arc")) {
+        return usage_error("segment: --min-arc needs --arc-method");
+    }
     const std::string out_path = vm.count("stdout") ? std::string("-") : out_arg;
     const bool force = vm.count("force") > 0;
 
@@ -288,7 +343,16 @@ int cmd_segment(const std::vector<std::string>& args) {
     const bool vectors = *to != VectorOut::json;
     SegmentStats stats;
     std::vector<SegmentedChain> cut_chains;
-    if (profile) {
+    std::vector<ArcCutChain> arc_chains;
+    if (arc_method) {
+        ArcCutOptions arc_options;
+        arc_options.search.min_length = min_arc;
+        arc_options.lines = *kind;
+        auto r = cut_arcs(*chains, profile, *arc_method, arc_options, source);
+        if (!r) return report(r.error());
+        arc_chains = std::move(*r);
+        for (const ArcCutChain& ac : arc_chains) cut_chains.push_back({ac.chain, {}});
+    } else if (profile) {
         auto r = cut(*chains, *profile, *kind, vectors, source, stats);
         if (!r) return report(r.error());
         cut_chains = std::move(*r);
@@ -335,8 +399,9 @@ int cmd_segment(const std::vector<std::string>& args) {
     if (*to == VectorOut::json) {
         text = write_json(cut_chains, info);
     } else {
-        auto drawing = feed ? segments_to_drawing(cut_chains, *feed)
-                            : segments_to_drawing(cut_chains);
+        auto drawing = arc_method ? arc_cut_to_drawing(arc_chains)
+                       : feed     ? segments_to_drawing(cut_chains, *feed)
+                                  : segments_to_drawing(cut_chains);
         if (!drawing)
             return report(make_error(drawing.error().code, source + ": " + drawing.error().message));
 
@@ -352,9 +417,15 @@ int cmd_segment(const std::vector<std::string>& args) {
         std::vector<Chain> input;
         input.reserve(cut_chains.size());
         for (SegmentedChain& sc : cut_chains) input.push_back(sc.chain);
-        const auto redraw = check_redraw(*drawing, input, *profile);
+        const auto redraw = check_redraw(*drawing, input, *profile, arc_method);
         std::string comment = "profile " + pname + ": `stepzip interpolate --profile " + pname +
                               "` redraws these vectors into the input steps";
+        if (arc_method) {
+            const std::string aname(arc_method_name(*arc_method));
+            comment = "profile " + pname + ", arc method " + aname +
+                      ": `stepzip interpolate --profile " + pname + " --arc-method " + aname +
+                      "` redraws these vectors into the input steps";
+        }
         if (!info.exact) {
             comment = "profile " + pname + ", patent approximation mode: end points read out by "
                       "SU 1089551 Fig. 5";

@@ -199,6 +199,30 @@ expect_err "bad --to" 2 "unknown output 'png'" "$BIN" segment fig5.fc --to png
 expect_err "bad segmenter" 2 "unknown segmenter" "$BIN" segment fig5.fc --to gcode --segmenter fast
 expect_err "bad profile" 2 "unknown profile" "$BIN" segment fig5.fc --to gcode --profile x
 
+# --arc-method: a job of lines and arcs, stepped by each arc method, comes back
+# with its three arcs as G2/G3, and the written G-code redraws the same steps.
+printf '%s\n' 'G0 X0 Y0' 'G1 X60 Y10' 'G3 X100 Y50 I0 J40' 'G1 X90 Y120' \
+    'G2 X150 Y180 I60 J0' 'G1 X150 Y80' 'G2 X110 Y40 I-40 J0' >arcs.gcode
+for method in evaluation accelerated dda prediction recursion; do
+    case $method in evaluation | prediction) prof=eval4 ;; *) prof=eval8 ;; esac
+    "$BIN" interpolate --profile $prof --arc-method $method arcs.gcode --to freeman \
+        -o "arcs-$method.fc" || fail "arcs $method: interpolate exit $?"
+    "$BIN" segment "arcs-$method.fc" --profile $prof --arc-method $method --to gcode \
+        -o "arcs-$method.out.gcode" || fail "arcs $method: segment exit $?"
+    n=$(grep -c '^G[23] X-*[0-9]* Y-*[0-9]* I-*[0-9]* J-*[0-9]*$' "arcs-$method.out.gcode" || true)
+    [ "$n" -eq 3 ] || fail "arcs $method: $n G2/G3 X Y I J moves, expected 3"
+    "$BIN" interpolate --profile $prof --arc-method $method "arcs-$method.out.gcode" \
+        --to freeman -o "arcs-$method.again.fc" || fail "arcs $method: redraw exit $?"
+    cmp -s "arcs-$method.fc" "arcs-$method.again.fc" ||
+        fail "arcs $method: the written G-code redraws other steps"
+done
+expect_err "arc method unknown" 2 "unknown arc method 'spiral'" \
+    "$BIN" segment arcs-dda.fc --to gcode --arc-method spiral
+expect_err "arc method not gcode" 2 "--arc-method needs --to gcode" \
+    "$BIN" segment arcs-dda.fc --to svg --arc-method dda
+expect_err "min-arc alone" 2 "--min-arc needs --arc-method" \
+    "$BIN" segment arcs-dda.fc --to gcode --min-arc 5
+
 if [ "$failures" -ne 0 ]; then
     echo "$failures failure(s)"
     exit 1

@@ -72,9 +72,10 @@ Result<std::vector<Chain>> interpolate_drawing(const Drawing& drawing,
 }
 
 Result<void> check_redraw(const Drawing& drawing, const std::vector<Chain>& chains,
-                          Profile profile) {
+                          Profile profile, std::optional<ArcMethod> arc_method) {
     DrawingInterpolation how;
     how.profile = profile;
+    how.arc_method = arc_method;
     how.source = "redrawn vectors";
     auto redrawn = interpolate_drawing(drawing, how);
     if (!redrawn) return std::move(redrawn).error();
