@@ -138,6 +138,32 @@ int write_text(const Result<std::string>& text, const std::string& source, const
     return 0;
 }
 
+// The cut with the fewest moves over every profile: `cut(p)` gives a Result
+// of cut chains, `moves(chain)` counts a chain's moves; sets `profile` to the
+// winner (the first on a tie). The first profile's error when none cuts.
+template <class Cut, class Moves>
+auto fewest_moves(std::optional<Profile>& profile, Cut cut, Moves moves) -> decltype(cut(Profile{})) {
+    std::optional<Error> first_error;
+    std::optional<decltype(cut(Profile{}))> best;
+    std::size_t fewest = 0;
+    for (Profile p : kAllProfiles) {
+        auto r = cut(p);
+        if (!r) {
+            if (!first_error) first_error = r.error();
+            continue;
+        }
+        std::size_t n = 0;
+        for (const auto& c : *r) n += moves(c);
+        if (!best || n < fewest) {
+            profile = p;
+            fewest = n;
+            best = std::move(r);
+        }
+    }
+    if (!best) return *first_error;
+    return std::move(*best);
+}
+
 // Cuts every chain into arcs drawn by `method` and default-phase lines under
 // `profile`, or under each profile when it is unset (the fewest moves win;
 // it is then set).
@@ -150,25 +176,11 @@ Result<std::vector<ArcCutChain>> cut_arcs(const std::vector<Chain>& chains,
         if (!r) return make_error(r.error().code, source + ": " + r.error().message);
         return r;
     }
-    std::optional<Error> first_error;
-    std::vector<ArcCutChain> best;
-    std::size_t fewest = 0;
-    for (Profile p : kAllProfiles) {
+    return fewest_moves(profile, [&](Profile p) -> Result<std::vector<ArcCutChain>> {
         auto r = cut_chains_into_arcs(chains, p, method, options);
-        if (!r) {
-            if (!first_error) first_error = make_error(r.error().code, source + ": " + r.error().message);
-            continue;
-        }
-        std::size_t n = 0;
-        for (const ArcCutChain& ac : *r) n += ac.moves.size();
-        if (!profile || n < fewest) {
-            profile = p;
-            fewest = n;
-            best = std::move(*r);
-        }
-    }
-    if (!profile) return *first_error;
-    return best;
+        if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+        return r;
+    }, [](const ArcCutChain& ac) { return ac.moves.size(); });
 }
 
 }  // namespace
@@ -357,25 +369,13 @@ int cmd_segment(const std::vector<std::string>& args) {
         if (!r) return report(r.error());
         cut_chains = std::move(*r);
     } else {
-        std::optional<Error> first_error;
-        std::size_t best = 0;
-        for (Profile p : kAllProfiles) {
-            SegmentStats s;
-            auto r = cut(*chains, p, *kind, vectors, source, s);
-            if (!r) {
-                if (!first_error) first_error = r.error();
-                continue;
-            }
-            std::size_t n = 0;
-            for (const SegmentedChain& sc : *r) n += sc.segments.size();
-            if (!profile || n < best) {
-                profile = p;
-                best = n;
-                stats = s;
-                cut_chains = std::move(*r);
-            }
-        }
-        if (!profile) return report(*first_error);
+        std::vector<SegmentStats> per_profile(std::size(kAllProfiles));
+        auto r = fewest_moves(profile, [&](Profile p) {
+            return cut(*chains, p, *kind, vectors, source, per_profile[static_cast<std::size_t>(p)]);
+        }, [](const SegmentedChain& sc) { return sc.segments.size(); });
+        if (!r) return report(r.error());
+        stats = per_profile[static_cast<std::size_t>(*profile)];
+        cut_chains = std::move(*r);
     }
     const std::string pname(profile_name(*profile));
     if (verbose)

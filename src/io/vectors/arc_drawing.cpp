@@ -2,6 +2,7 @@
 // (what `stepzip segment --arc-method` writes as G1 and G2 / G3).
 #include <string>
 
+#include "drawing_internal.hpp"
 #include "stepzip/vectors.hpp"
 
 namespace stepzip {
@@ -28,11 +29,7 @@ Result<Drawing> arc_cut_to_drawing(const std::vector<ArcCutChain>& chains) {
     Drawing drawing;
     for (std::size_t c = 0; c < chains.size(); ++c) {
         const ArcCutChain& ac = chains[c];
-        if (ac.chain.axes != 2)
-            return make_error(Errc::unsupported,
-                              "chain " + std::to_string(c + 1) + " has " +
-                                  std::to_string(ac.chain.axes) +
-                                  " axes; vector output needs two-axis chains");
+        if (ac.chain.axes != 2) return not_two_axis(c, ac.chain.axes);
         if (ac.moves.empty()) continue;
         VectorPath path{ac.chain.start[0], ac.chain.start[1], {}};
         std::int64_t x = path.x0, y = path.y0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "drawing_internal.hpp"
 #include "stepzip/vectors.hpp"
 
 namespace stepzip {
@@ -12,11 +13,7 @@ Result<Drawing> segments_to_drawing(const std::vector<SegmentedChain>& chains) {
     Drawing drawing;
     for (std::size_t c = 0; c < chains.size(); ++c) {
         const SegmentedChain& sc = chains[c];
-        if (sc.chain.axes != 2)
-            return make_error(Errc::unsupported,
-                              "chain " + std::to_string(c + 1) + " has " +
-                                  std::to_string(sc.chain.axes) +
-                                  " axes; vector output needs two-axis chains");
+        if (sc.chain.axes != 2) return not_two_axis(c, sc.chain.axes);
         if (sc.segments.empty()) continue;
         VectorPath path{sc.chain.start[0], sc.chain.start[1], {}};
         std::int64_t x = path.x0, y = path.y0;
