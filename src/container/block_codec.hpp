@@ -31,7 +31,7 @@ inline constexpr std::uint64_t kMaxMetadata = 4096;
 /// Metadata record tags.
 inline constexpr std::uint64_t kMetaPatentStats = 1;
 
-enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4 };
+enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4, kTable = 5 };
 /// Block flags (version 1: the flags byte; version 2: bits 3.. of the block byte).
 /// kFlagWindow (version 2 only): the block's models start from the window.
 inline constexpr unsigned kFlagContinues = 1u, kFlagOpen = 2u, kFlagWindow = 4u;

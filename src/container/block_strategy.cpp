@@ -7,6 +7,7 @@
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
+#include "table_block.hpp"
 #include "timed_phase.hpp"
 
 namespace stepzip::stz {
@@ -23,6 +24,9 @@ constexpr std::uint64_t kSegmentModelOnly = 60, kStepModelOnly = 250;
 // Step-model context order used below the thorough levels (within 1% of the
 // best order on every corpus file).
 constexpr int kFastStepOrder = 2;
+// Below the thorough levels, blocks of fewer steps are also coded by the
+// segment model (block_strategy: choose_block).
+constexpr std::uint64_t kSmallBlockSteps = 1u << 16;
 
 using Cut = std::vector<std::vector<Segment>>;
 
@@ -163,6 +167,12 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
 
 }  // namespace
 
+TableEffort table_effort(int level) {
+    TableEffort e;
+    e.recent_search = level <= 1 ? 16 : level <= 3 ? 64 : level <= 6 ? 256 : 1024;
+    return e;
+}
+
 int window_log_for_level(int level) {
     // In steps + chains (about bytes of Freeman text); zstd's and xz's level
     // tables are the anchors: a few MiB at the fast levels, 8 MiB at the top.
@@ -238,7 +248,15 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 consider(kChains, make_block_record(kChains, job.flags, payload, s.level));
         }
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
-        if (s.thorough || block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps) {
+        if (!s.thorough && !s.timed) {
+            const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
+            if (table.size() <= kMaxBlockPayload) consider(kTable, make_stored_record(kTable, job.flags, table));
+        }
+        // The fast levels code small blocks by the segment model too: its
+        // adaptive contexts need no tables (a table block's fixed cost), and
+        // a small block decodes fast whatever its type. Timed frames keep the
+        // segment model, which predicts their phases (FORMAT.md 1.5.1).
+        if (s.thorough || s.timed || job.steps < kSmallBlockSteps) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
@@ -257,7 +275,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             }
         }
     }
-    if (fits && job.steps <= kMaxBlockSteps && !segment_model_only) {
+    if (fits && job.steps <= kMaxBlockSteps && !segment_model_only && (s.thorough || job.steps < kSmallBlockSteps)) {
         int order = 0;
         const std::string model = write_step_model(block, s.thorough ? 0 : kFastStepOrder, nullptr, &order);
         if (!model.empty() && model.size() <= kMaxBlockPayload &&
@@ -307,7 +325,7 @@ bool has_symbols(const WindowView& window) {
 }  // namespace
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    if (job.type == kRaw || job.type == kTable || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
     // Below the thorough levels a segment-model block whose window holds
     // segment-model blocks only (as the first pass chose) stays one: the
     // segment model sees the window's content too.

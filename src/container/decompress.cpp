@@ -14,6 +14,7 @@
 #include "modeled_block.hpp"
 #include "../common/bytes.hpp"
 #include "memory_io.hpp"
+#include "table_block.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"
 
@@ -183,7 +184,7 @@ private:
         } else {
             b.type = first & 7u;
             b.flags = first >> 3;
-            if (b.type == kEnd || b.type > kStepModel)
+            if (b.type == kEnd || b.type > kTable)
                 return make_error(Errc::corrupt, at(block_at) + ": unknown block type " + std::to_string(b.type));
             if ((b.flags & ~7u) != 0)
                 return make_error(Errc::reserved_bits, at(block_at) + ": reserved block flags are set");
@@ -206,7 +207,7 @@ private:
             // the one block byte in version 2.
             return make_error(Errc::limit, at(block_at + (hdr_.version == 1 ? 2 : 1)) +
                                                ": block sizes exceed the decoder limits");
-        const bool stored = b.type == kSegmentModel || b.type == kStepModel;
+        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kTable;
         if (stored && b.dsize != b.csize)
             return make_error(Errc::corrupt, at(block_at + 6) +
                                                  ": decoded size of a modeled block differs from its size");
@@ -269,6 +270,9 @@ private:
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed);
+                } else if (b.type == kTable) {
+                    if (w) return make_error(Errc::corrupt, where_ + ": a table block flagged window");
+                    r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,

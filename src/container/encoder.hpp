@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "block_codec.hpp"
+#include "table_block.hpp"
 #include "window.hpp"
 
 namespace stepzip::stz {
@@ -60,6 +61,9 @@ struct BlockJob {
 /// Block strategy, frame level: under --profile auto the profile, and below
 /// the thorough levels the segment-model cut, chosen on the first block.
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s);
+
+/// The table-block encoder effort of a fast level (below kThoroughLevel).
+TableEffort table_effort(int level);
 
 /// The window a level declares (log2 of steps + chains).
 int window_log_for_level(int level);
