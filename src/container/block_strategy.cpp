@@ -250,7 +250,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
             const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
-            if (table.size() <= kMaxBlockPayload) consider(kTable, make_stored_record(kTable, job.flags, table));
+            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
+                job.cut = segs;
         }
         // The fast levels code small blocks by the segment model too: its
         // adaptive contexts need no tables (a table block's fixed cost), and
@@ -305,7 +306,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     }
     job.type = type;
     job.record = std::move(best);
-    if (type != kSegmentModel) job.cut.clear();
+    if (type != kSegmentModel && type != kTable) job.cut.clear();
     if (type == kRaw) job.stats = {};
     if (s.window_log != 0) {
         auto w = std::make_shared<WindowBlock>();
@@ -344,11 +345,21 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
 }
 
 void note_items(BlockJob& job) {
-    if (job.contribution && job.type == kSegmentModel) job.contribution->items = segment_items(job.block, job.cut);
+    if (job.contribution && (job.type == kSegmentModel || job.type == kTable))
+        job.contribution->items = segment_items(job.block, job.cut);
 }
 
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (window.empty() || job.type != kSegmentModel) return;
+    if (window.empty()) return;
+    if (job.type == kTable) {
+        if (std::none_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); })) return;
+        const std::string table = write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window);
+        if (table.size() > kMaxBlockPayload) return;
+        std::string rec = make_stored_record(kTable, job.flags | kFlagWindow, table);
+        if (rec.size() < job.record.size()) job.record = std::move(rec);
+        return;
+    }
+    if (job.type != kSegmentModel) return;
     const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
     if (model.empty() || model.size() > kMaxBlockPayload) return;
     std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);

@@ -271,8 +271,8 @@ private:
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed);
                 } else if (b.type == kTable) {
-                    if (w) return make_error(Errc::corrupt, where_ + ": a table block flagged window");
-                    r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what);
+                    r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
+                                         window_.limit() ? &contribution->items : nullptr);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,

@@ -34,7 +34,7 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
         rec.type == kChains
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
         : rec.type == kTable
-            ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where)
+            ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
         : rec.type == kSegmentModel
             ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
                                  s.timed)

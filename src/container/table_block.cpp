@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <numeric>
 
 #include "../common/bytes.hpp"
@@ -137,6 +138,19 @@ private:
 
 using SuccList = MtfList<kSucc>;
 
+// Canonical form of a segment: degenerate phases at their only value,
+// unused phases zero (as the decoder rebuilds it).
+Segment canonical(Profile p, const Segment& s, int axes) {
+    Segment c{};
+    c.delta = s.delta;
+    for (int j = 0; j < phase_count(p, axes); ++j) {
+        const auto ab = *phase_arguments(p, s, axes, j);
+        const PhaseRange r = phase_range(p, ab.first, ab.second);
+        c.phase[static_cast<std::size_t>(j)] = r.hi - r.lo == 1 ? r.lo : s.phase[static_cast<std::size_t>(j)];
+    }
+    return c;
+}
+
 template <class Io>
 class TableCoder {
 public:
@@ -151,7 +165,8 @@ public:
     std::int64_t grid_ = 1;
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
-    std::vector<Segment> segs_;
+    std::vector<const Segment*> segs_;  // into own_ or the window's items
+    std::deque<Segment> own_;
     std::vector<Point> starts_;
     std::vector<std::uint32_t> hist_;
     // Shapes: id -> index in segs_ of the segment coded in full.
@@ -167,6 +182,35 @@ public:
     std::array<std::int64_t, kMaxAxes> prev_s_{};
     std::array<std::uint64_t, 3> rep_{1, 2, 3};
     const char* error_ = nullptr;
+
+    // Starts the block from the window (docs/FORMAT.md "Table block"): the
+    // items of the window's blocks, oldest first, enter the history (and
+    // nothing else) so that matches may copy them. `canon`: make their
+    // segments canonical (the encoder's cuts may not be).
+    void prime(const WindowView& window, bool canon) {
+        std::size_t n = 0, c = 0;
+        for (const auto& b : window) {
+            n += b->items.segments.size();
+            c += b->items.starts.size();
+        }
+        segs_.reserve(n);
+        hist_.reserve(n + 2 * c);
+        starts_.reserve(c);
+        for (const auto& b : window) {
+            const SegmentItems& w = b->items;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                starts_.push_back(w.starts[c]);
+                hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                    if (canon) own_.push_back(canonical(p_, w.segments[k], axes_));
+                    segs_.push_back(canon ? &own_.back() : &w.segments[k]);
+                    hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+                }
+                hist_.push_back(kEndTag);
+            }
+        }
+    }
 
     bool fail(const char* what) {
         if (!error_) error_ = what;
@@ -220,7 +264,7 @@ public:
 
     // A segment given by shape id `id` (coded by successor or recent rank).
     void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
-        const Segment seg = segs_[shape_[id]];
+        const Segment seg = *segs_[shape_[id]];
         if (from_recent_rank) recent_.to_front(r);
         else recent_.push_front(id);
         succ_[prev_shape_ + 1].use(id);
@@ -230,7 +274,8 @@ public:
     }
 
     void push_seg(const Segment& seg) {
-        segs_.push_back(seg);
+        own_.push_back(seg);
+        segs_.push_back(&own_.back());
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         note_fields(seg);
     }
@@ -375,24 +420,11 @@ public:
             hist_.push_back(e);
             if ((e & ~kIndexMask) == kSegTag) last_seg = e;
         }
-        if (last_seg != kNone) note_fields(segs_[last_seg & kIndexMask]);
+        if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
         prev_shape_ = kNone;
         prev_op_ = kAfterMatch;
     }
 };
-
-// Canonical form of a segment: degenerate phases at their only value,
-// unused phases zero (as the decoder rebuilds it).
-Segment canonical(Profile p, const Segment& s, int axes) {
-    Segment c{};
-    c.delta = s.delta;
-    for (int j = 0; j < phase_count(p, axes); ++j) {
-        const auto ab = *phase_arguments(p, s, axes, j);
-        const PhaseRange r = phase_range(p, ab.first, ab.second);
-        c.phase[static_cast<std::size_t>(j)] = r.hi - r.lo == 1 ? r.lo : s.phase[static_cast<std::size_t>(j)];
-    }
-    return c;
-}
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
     h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
@@ -555,7 +587,7 @@ std::uint64_t start_grid(const Block& block, const std::vector<std::vector<Segme
 }  // namespace
 
 std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
-                              const TableEffort& effort) {
+                              const TableEffort& effort, const WindowView* window) {
     const int axes = block.axes;
     BlockHead h;
     h.nchains = block.chains.size();
@@ -564,6 +596,25 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     std::vector<Segment> cs;
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
+    // The window's items first (matches may reach them), then the block's.
+    if (window)
+        for (const auto& b : *window) {
+            const SegmentItems& w = b->items;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                deltas.push_back(w.starts[c]);
+                items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
+                keys.push_back(key_of(1, w.starts[c], nullptr));
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                    cs.push_back(canonical(p, w.segments[k], axes));
+                    items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
+                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                }
+                items.push_back(kEndTag);
+                keys.push_back(2);
+            }
+        }
+    const std::size_t first = items.size();
     {
         Point ref{};
         for (std::size_t i = 0; i < block.chains.size(); ++i) {
@@ -605,10 +656,11 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     EncSide io;
     TableCoder<EncSide> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
+    if (window) coder.prime(*window, true);
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
-        return shape_key[id] == keys[item] && coder.segs_[coder.shape_[id]] == cs[items[item] & kIndexMask];
+        return shape_key[id] == keys[item] && *coder.segs_[coder.shape_[id]] == cs[items[item] & kIndexMask];
     };
 
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
@@ -623,7 +675,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     const std::size_t min_rep = static_cast<std::size_t>(std::max(1, effort.min_rep_match));
     const std::size_t search = static_cast<std::size_t>(std::clamp(effort.recent_search, 0, static_cast<int>(kRecent)));
 
-    for (std::size_t i = 0; i < n;) {
+    for (std::size_t i = 0; i < first; ++i) insert(i);
+    for (std::size_t i = first; i < n;) {
         // A match: a repeat offset first, then the hash candidate.
         std::size_t len = 0, off = 0;
         for (int r = 0; r < 3; ++r) {
@@ -737,7 +790,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
 }
 
 Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
-                              BlockCounts& counts, const std::string& where) {
+                              BlockCounts& counts, const std::string& where, const WindowView* window,
+                              SegmentItems* items) {
     Cursor cur(payload);
     auto error = [&](Errc code, std::size_t at, const std::string& what) {
         return make_error(code, where + " byte " + std::to_string(at) + ": " + what);
@@ -771,8 +825,14 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     TableCoder<DecSide> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     start_output(out, expand, axes, std::move(*layout));
-    const std::uint64_t max_items = h.nsegments + 2 * h.nchains;
-    coder.hist_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(max_items, 1u << 20)));
+    if (window) coder.prime(*window, false);
+    if (items) {
+        *items = SegmentItems{};
+        // As declared, within what the payload's size can plausibly hold.
+        items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, 8 * payload.size())));
+    }
+    // Items the block may add after the window's.
+    const std::uint64_t max_items = coder.hist_.size() + h.nsegments + 2 * h.nchains;
     auto fail = [&](const char* what) {
         if (coder.error_) what = coder.error_;
         if (io.bits.failed) return error(Errc::corrupt, bits_at + io.bits.pos(), std::string(what) + " (extra bits)");
@@ -795,6 +855,10 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             chain.axes = axes;
             if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
             pos = chain.start;
+            if (items) {
+                items->starts.push_back(coder.starts_[e & kIndexMask]);
+                items->counts.push_back(0);
+            }
         } else if (kind == kEndTag) {
             if (!in_chain) return "chain end outside a chain";
             in_chain = false;
@@ -802,13 +866,17 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             if (expand) out.chains.push_back(std::move(chain));
         } else {
             if (!in_chain) return "segment outside a chain";
-            const Segment& seg = coder.segs_[e & kIndexMask];
+            const Segment& seg = *coder.segs_[e & kIndexMask];
             const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
             if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
             ++seen_segments;
             seen_steps += n;
             for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
             if (expand) expand_segment(p, seg, axes, chain.steps);
+            if (items) {
+                items->segments.push_back(seg);
+                ++items->counts.back();
+            }
         }
         return nullptr;
     };
@@ -839,7 +907,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             const std::uint64_t len = 1 + bucket_value(op - kOpMatch, [&](int n) { return io.raw(n, 0); });
             const std::uint64_t off = coder.code_offset(0);
             if (io.failed || io.rans.failed || io.bits.failed) return fail("bad match");
-            if (off > coder.hist_.size()) return fail("match offset before the block");
+            if (off > coder.hist_.size()) return fail("match offset before the window");
             if (len > max_items - coder.hist_.size()) return fail("match longer than the block");
             const std::size_t from = coder.hist_.size();
             coder.copy(off, len);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "block_codec.hpp"
+#include "window.hpp"
 
 namespace stepzip::stz {
 
@@ -23,14 +24,18 @@ struct TableEffort {
 };
 
 /// Payload of a table block for `block` cut into `segs` under `p` (the
-/// segments write_chain_payload takes).
+/// segments write_chain_payload takes); with `window`, matches may copy
+/// the window's items (a block flagged kFlagWindow).
 std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
-                              const TableEffort& effort = {});
+                              const TableEffort& effort = {}, const WindowView* window = nullptr);
 
 /// Parses a table-block payload into `out` (chains and layout, when
 /// `expand`) and adds its counts to `counts`. Errors: Errc::corrupt and
 /// Errc::limit, each naming the payload byte offset after `where`.
+/// `window`: the block is flagged kFlagWindow; `items`, when not null,
+/// receives the block's segment items (its contribution to the window).
 Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
-                              BlockCounts& counts, const std::string& where);
+                              BlockCounts& counts, const std::string& where, const WindowView* window = nullptr,
+                              SegmentItems* items = nullptr);
 
 }  // namespace stepzip::stz
