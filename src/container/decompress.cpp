@@ -281,6 +281,7 @@ private:
                 if (!r) return std::move(r).error();
                 if (b.type == kSegmentModel) ++info_.segment_model_blocks;
                 if (b.type == kStepModel) ++info_.step_model_blocks;
+                if (b.type == kTable) ++info_.table_blocks;
                 info_.segments += counts.segments;
                 info_.steps += counts.steps;
                 info_.chains += counts.chains;
@@ -420,6 +421,7 @@ void add(FrameInfo& total, const FrameInfo& f) {
     total.raw_blocks += f.raw_blocks;
     total.segment_model_blocks += f.segment_model_blocks;
     total.step_model_blocks += f.step_model_blocks;
+    total.table_blocks += f.table_blocks;
     total.chains += f.chains;
     total.steps += f.steps;
     total.segments += f.segments;
