@@ -17,37 +17,23 @@
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
+#include "support/pinned_bytes.hpp"
 
 namespace stepzip::stz {
 namespace {
 
 using Cut = std::vector<std::vector<Segment>>;
+using test::corpus_block;
+using test::hex;
+using test::unhex;
 
-Block text_block(InputFormat f, const std::string& text, std::size_t max_steps = SIZE_MAX) {
-    auto chains = read_chains(f, text, "test");
-    EXPECT_TRUE(chains.ok());
-    Block b;
-    b.axes = chains.ok() && !chains->empty() ? (*chains)[0].axes : 2;
-    std::size_t total = 0;
-    if (chains.ok())
-        for (Chain& c : *chains) {
-            if (total + c.steps.size() > max_steps) break;
-            total += c.steps.size();
-            b.chains.push_back(std::move(c));
-        }
-    return b;
-}
+Block text_block(InputFormat f, const std::string& text) { return test::block_of(f, text); }
 
 std::string slurp(const std::filesystem::path& p) {
     std::ifstream f(p, std::ios::binary);
     std::ostringstream s;
     s << f.rdbuf();
     return s.str();
-}
-
-Block corpus_block(const char* rel, std::size_t max_steps) {
-    const std::string text = slurp(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel);
-    return text_block(InputFormat::freeman, text, max_steps);
 }
 
 Cut greedy_cut(const Block& b, Profile p) {
@@ -134,24 +120,6 @@ constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222
 constexpr const char* kPinned =
     "02 04 21 02 00 00 a9 92 86 e8 80 98 30 01 01 1c 00 01 00 02 02 00 01 1b 00 06 00 00 01 00 09 00 08 00 02 00 "
     "02 00 01 00 04 00 06 00 09 00 0a 01 01 00 00 08 00 01 01 00 00 04 00 08 3a 00 40 00 18 00 40 00 2b 01";
-
-std::string hex(std::string_view b) {
-    static const char* digits = "0123456789abcdef";
-    std::string s;
-    for (unsigned char c : b) {
-        if (!s.empty()) s += ' ';
-        s += digits[c >> 4];
-        s += digits[c & 15];
-    }
-    return s;
-}
-
-std::string unhex(std::string_view h) {
-    std::string out;
-    for (std::size_t i = 0; i + 1 < h.size(); i += 3)
-        out.push_back(static_cast<char>(std::stoi(std::string(h.substr(i, 2)), nullptr, 16)));
-    return out;
-}
 
 TEST(ContainerTable, PinnedPayload) {
     const Block b = text_block(InputFormat::freeman, kTwoChains);

@@ -257,7 +257,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // adaptive contexts need no tables (a table block's fixed cost), and
         // a small block decodes fast whatever its type. Timed frames keep the
         // segment model, which predicts their phases (FORMAT.md 1.5.1).
-        if (s.thorough || s.timed || job.steps < kSmallBlockSteps) {
+        if (s.thorough || ((s.timed || job.steps < kSmallBlockSteps) &&
+                           (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps))) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
