@@ -334,7 +334,14 @@ bool has_symbols(const WindowView& window) {
 }  // namespace
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (job.type == kRaw || job.type == kTable || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    // A table block tries the step model from the window where its first
+    // pass tried the step model: at kFastStepLevel and above, dense blocks.
+    if (job.type == kTable) {
+        std::uint64_t nsegs = 0;
+        for (const auto& v : job.cut) nsegs += v.size();
+        if (s.level < kFastStepLevel || nsegs * 1000 < kSegmentModelOnly * job.steps) return;
+    }
     // Below the thorough levels a segment-model block whose window holds
     // segment-model blocks only (as the first pass chose) stays one: the
     // segment model sees the window's content too.
