@@ -8,6 +8,7 @@
 #include <xxhash.h>
 
 #include <cstring>
+#include <deque>
 #include <memory>
 
 #include "block_codec.hpp"
@@ -127,7 +128,8 @@ public:
         // With a window, every chain block is decoded in full: later blocks
         // start from its content.
         expand_ = out_ != nullptr || hdr_.window() != 0;
-        if (hdr_.window() != 0 && hdr_.axes == 2) steps_ = make_step_history();
+        // The step model's history is built when a block first needs it.
+        steps_frame_ = hdr_.window() != 0 && hdr_.axes == 2;
         if (out_) writer_ = std::make_unique<BlockWriter>(hdr_.format);
         state_ = XXH64_createState();
         XXH64_reset(state_, 0);
@@ -231,6 +233,7 @@ private:
             const std::string_view payload = std::string_view(rec_).substr(b.header, b.csize);
             auto contribution = std::make_shared<WindowBlock>();
             const WindowView view = window_.view();
+            if (steps_frame_ && !steps_ && b.type == kStepModel && (b.flags & kFlagWindow)) start_history(view);
             if (steps_) {
                 const std::uint64_t end = step_history_end(*steps_);
                 contribution->first_symbol = end;
@@ -288,18 +291,25 @@ private:
                 if (block.continues && chain_open_ && counts.chains > 0) --info_.chains;
                 chain_open_ = block.open;
                 contribution->weight = counts.steps + counts.chains;
-                if (steps_ && !on_history) {
+                if (steps_frame_ && !on_history) {
                     add_steps(*contribution, block);
-                    step_history_add(*steps_, *contribution);
+                    if (steps_) step_history_add(*steps_, *contribution);
                 }
-                // The history holds the symbols: the window keeps their place only.
-                contribution->symbols = {};
-                contribution->starts = {};
+                // Once the history holds the symbols, the window keeps their
+                // place only; before, it keeps them for start_history().
+                if (steps_) {
+                    contribution->symbols = {};
+                    contribution->starts = {};
+                }
                 if (out_) {
                     if (auto rr = writer_->write(block, rendered); !rr)
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
                     info_.decoded_bytes += rendered.size();
                 }
+            }
+            if (steps_frame_ && !steps_) {
+                held_.push_back(contribution);
+                if (held_.size() > kMaxWindowBlocks) held_.pop_front();
             }
             window_.push(std::move(contribution));
             if (out_) {
@@ -308,6 +318,26 @@ private:
             }
             if (progress_) progress_(src_.offset());
         }
+    }
+
+    // The step model's history of the frame, built from the window's blocks
+    // (their positions counted from the window's start: a table rebuilt from
+    // the window alone, section 1.8) when a block first decodes on it; from
+    // then on every block is added as it is decoded. Until then no block
+    // pays for the history (the table blocks of the fast levels never do).
+    void start_history(const WindowView& view) {
+        steps_ = make_step_history();
+        for (const auto& c : view) {
+            WindowBlock* held = nullptr;
+            for (const auto& h : held_)
+                if (h.get() == c.get()) held = h.get();
+            if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
+            held->first_symbol = step_history_end(*steps_);
+            step_history_add(*steps_, *held);
+            held->symbols = {};
+            held->starts = {};
+        }
+        held_.clear();
     }
 
     Result<void> trailer() {
@@ -406,7 +436,9 @@ private:
     std::uint64_t frame_at_ = 0;
     FrameInfo info_;
     Window window_;
-    StepHistoryPtr steps_;  // frames with a window on two axes
+    StepHistoryPtr steps_;  // frames with a window on two axes, once a block needs it
+    bool steps_frame_ = false;  // a frame with a window on two axes
+    std::deque<std::shared_ptr<WindowBlock>> held_;  // before steps_: the window's blocks
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;
