@@ -19,10 +19,16 @@
 #include "../src/container/modeled_block.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
-#include "support/pinned_blocks.hpp"
+#include "support/pinned_bytes.hpp"
 
 namespace stepzip::stz {
 namespace {
+
+using test::corpus_block;
+using test::hex;
+using test::unhex;
+using test::fixed_block;
+using test::greedy_cut;
 
 // Two chains (plotter-like lines and a repeated pattern), eval8, greedy cut.
 constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
@@ -59,13 +65,6 @@ TEST(FormatBytes, StepModelPayload) {
     EXPECT_EQ(hex(write_step_model(b, 3)), "02 21 03 00 00 00 36 6e 36 6a e5 a6 5f d2 95 8a 4a f9 80");
 }
 
-std::string unhex(std::string_view h) {
-    std::string out;
-    for (std::size_t i = 0; i + 1 < h.size(); i += 3)
-        out.push_back(static_cast<char>(std::stoi(std::string(h.substr(i, 2)), nullptr, 16)));
-    return out;
-}
-
 TEST(FormatBytes, PinnedPayloadsDecodeToTheirChains) {
     // The decoder reads the pinned bytes as these chains: a decoder change
     // that moves the bytes' meaning fails here even if the encoder moved too.
@@ -89,25 +88,6 @@ TEST(FormatBytes, PinnedPayloadsDecodeToTheirChains) {
 // successor and recent-shape lists, match lengths, every turn context): the
 // payloads of the first 20000 steps of two corpus files are pinned by size
 // and XXH64. (They change if those corpus files are regenerated.)
-Block corpus_block(const char* rel, std::size_t max_steps) {
-    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
-    std::ostringstream text;
-    text << f.rdbuf();
-    auto chains = read_chains(InputFormat::freeman, text.str(), rel);
-    EXPECT_TRUE(chains.ok()) << rel;
-    Block b;
-    b.axes = 2;
-    std::size_t total = 0;
-    if (chains.ok())
-        for (Chain& c : *chains) {
-            if (total + c.steps.size() > max_steps) break;
-            total += c.steps.size();
-            b.chains.push_back(std::move(c));
-        }
-    EXPECT_GT(total, max_steps / 2) << rel;
-    return b;
-}
-
 TEST(FormatBytes, SegmentModelPayloadOfACorpusBlock) {
     const Block b = corpus_block("plotter/hershey-grbl.fc", 20000);
     const std::string payload = write_segment_model(b, Profile::grbl, greedy_cut(b, Profile::grbl));

@@ -1,4 +1,4 @@
-// Block type 6, mixed predictions (docs/FORMAT.md 1.10): the squash and
+// Block type 6, mixed predictions (docs/FORMAT.md 1.11): the squash and
 // stretch tables follow their definitions; both models round-trip with
 // mixed predictions, with and without a window, and the decoder errors name
 // the payload byte; the payload bytes of small fixed inputs are pinned; the
@@ -18,10 +18,14 @@
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
-#include "support/pinned_blocks.hpp"
+#include "support/pinned_bytes.hpp"
 
 namespace stepzip::stz {
 namespace {
+
+using test::fixed_block;
+using test::greedy_cut;
+using test::hex;
 
 // Closed contours (squares and diamonds of random sizes, some repeated) and
 // plotter-like strokes, from a fixed seed.
@@ -136,7 +140,7 @@ TEST(MixedModels, DecoderErrorsNameThePayloadByte) {
     }
 }
 
-// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.10).
+// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.11).
 constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
 
 TEST(MixedModels, PayloadBytesArePinned) {

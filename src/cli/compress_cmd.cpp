@@ -96,9 +96,10 @@ int cmd_compress(const std::vector<std::string>& args) {
         ("segmenter", po::value(&segmenter), "greedy|optimal|patent (default: greedy below "
                                              "-L 19, optimal at 19)")
         ("level,L", po::value(&level), "1 (fastest) .. 19 (smallest), default 3, also as -1 .. -19; "
-                                       "below 10 the profile, cut and block kind are chosen on "
-                                       "samples, from 10 every encoding is tried, 19 adds the "
-                                       "optimal segmenter")
+                                       "1-9 write table blocks (fast to decode; dense contours "
+                                       "also try the step model from 3), the profile and cut "
+                                       "chosen on samples; from 10 every encoding is tried, 19 "
+                                       "adds the optimal segmenter")
         ("threads,T", po::value(&threads), "compress blocks on N threads (0 = all cores; default 1); "
                                            "output does not depend on N")
         ("format", po::value(&format), "freeman|points|steps|timed (default: detected; timed: a steps log read with time as axis 0)")

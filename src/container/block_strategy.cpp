@@ -7,6 +7,7 @@
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
+#include "table_block.hpp"
 #include "timed_phase.hpp"
 
 namespace stepzip::stz {
@@ -23,6 +24,13 @@ constexpr std::uint64_t kSegmentModelOnly = 60, kStepModelOnly = 250;
 // Step-model context order used below the thorough levels (within 1% of the
 // best order on every corpus file).
 constexpr int kFastStepOrder = 2;
+// Below the thorough levels, blocks of fewer steps are also coded by the
+// segment model (block_strategy: choose_block).
+constexpr std::uint64_t kSmallBlockSteps = 1u << 16;
+// From this level on, every block dense in segments (contours, random
+// walks: more than kSegmentModelOnly per 1000 steps) also tries the step
+// model, which is 15-30 % smaller there than a table block.
+constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
@@ -163,6 +171,12 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
 
 }  // namespace
 
+TableEffort table_effort(int level) {
+    TableEffort e;
+    e.recent_search = level <= 1 ? 16 : level <= 3 ? 64 : level <= 6 ? 256 : 1024;
+    return e;
+}
+
 int window_log_for_level(int level) {
     // In steps + chains (about bytes of Freeman text); zstd's and xz's level
     // tables are the anchors: a few MiB at the fast levels, 8 MiB at the top.
@@ -238,7 +252,17 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 consider(kChains, make_block_record(kChains, job.flags, payload, s.level));
         }
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
-        if (s.thorough || block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps) {
+        if (!s.thorough && !s.timed) {
+            const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
+            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
+                job.cut = segs;
+        }
+        // The fast levels code small blocks by the segment model too: its
+        // adaptive contexts need no tables (a table block's fixed cost), and
+        // a small block decodes fast whatever its type. Timed frames keep the
+        // segment model, which predicts their phases (FORMAT.md 1.5.1).
+        if (s.thorough || ((s.timed || job.steps < kSmallBlockSteps) &&
+                           (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps))) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
@@ -257,7 +281,10 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             }
         }
     }
-    if (fits && job.steps <= kMaxBlockSteps && !segment_model_only) {
+    // The step model decodes a few times slower than a table block: below
+    // kFastStepLevel only small blocks try it.
+    if (fits && job.steps <= kMaxBlockSteps && !segment_model_only &&
+        (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps)) {
         int order = 0;
         const std::string model = write_step_model(block, s.thorough ? 0 : kFastStepOrder, nullptr, &order);
         if (!model.empty() && model.size() <= kMaxBlockPayload &&
@@ -287,7 +314,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     }
     job.type = type;
     job.record = std::move(best);
-    if (type != kSegmentModel) job.cut.clear();
+    if (type != kSegmentModel && type != kTable) job.cut.clear();
     if (type == kRaw) job.stats = {};
     if (s.window_log != 0) {
         auto w = std::make_shared<WindowBlock>();
@@ -308,6 +335,13 @@ bool has_symbols(const WindowView& window) {
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+    // A table block tries the step model from the window where its first
+    // pass tried the step model: at kFastStepLevel and above, dense blocks.
+    if (job.type == kTable) {
+        std::uint64_t nsegs = 0;
+        for (const auto& v : job.cut) nsegs += v.size();
+        if (s.level < kFastStepLevel || nsegs * 1000 < kSegmentModelOnly * job.steps) return;
+    }
     // Below the thorough levels a segment-model block whose window holds
     // segment-model blocks only (as the first pass chose) stays one: the
     // segment model sees the window's content too.
@@ -326,7 +360,8 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
 }
 
 void note_items(BlockJob& job) {
-    if (job.contribution && job.type == kSegmentModel) job.contribution->items = segment_items(job.block, job.cut);
+    if (job.contribution && (job.type == kSegmentModel || job.type == kTable))
+        job.contribution->items = segment_items(job.block, job.cut);
 }
 
 namespace {
@@ -358,14 +393,30 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
 
 }  // namespace
 
-void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (!window.empty() && job.type == kSegmentModel) {
-        const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
-        if (!model.empty() && model.size() <= kMaxBlockPayload) {
-            std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
-            if (rec.size() < job.record.size()) job.record = std::move(rec);
-        }
+namespace {
+
+// The block's segment items coded again from the window (table or segment
+// model, as chosen), kept when smaller.
+void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.type == kTable) {
+        if (std::none_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); })) return;
+        const std::string table = write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window);
+        if (table.size() > kMaxBlockPayload) return;
+        std::string rec = make_stored_record(kTable, job.flags | kFlagWindow, table);
+        if (rec.size() < job.record.size()) job.record = std::move(rec);
+        return;
     }
+    if (job.type != kSegmentModel) return;
+    const std::string model = write_segment_model(job.block, s.profile, job.cut, &window, s.timed);
+    if (model.empty() || model.size() > kMaxBlockPayload) return;
+    std::string rec = make_stored_record(kSegmentModel, job.flags | kFlagWindow, model);
+    if (rec.size() < job.record.size()) job.record = std::move(rec);
+}
+
+}  // namespace
+
+void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (!window.empty()) window_items_pass(job, s, window);
     mixed_pass(job, s, window);
 }
 

@@ -8,12 +8,14 @@
 #include <xxhash.h>
 
 #include <cstring>
+#include <deque>
 #include <memory>
 
 #include "block_codec.hpp"
 #include "modeled_block.hpp"
 #include "../common/bytes.hpp"
 #include "memory_io.hpp"
+#include "table_block.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"
 
@@ -126,7 +128,8 @@ public:
         // With a window, every chain block is decoded in full: later blocks
         // start from its content.
         expand_ = out_ != nullptr || hdr_.window() != 0;
-        if (hdr_.window() != 0 && hdr_.axes == 2) steps_ = make_step_history();
+        // The step model's history is built when a block first needs it.
+        steps_frame_ = hdr_.window() != 0 && hdr_.axes == 2;
         if (out_) writer_ = std::make_unique<BlockWriter>(hdr_.format);
         state_ = XXH64_createState();
         XXH64_reset(state_, 0);
@@ -183,7 +186,7 @@ private:
         } else {
             b.type = first & 7u;
             b.flags = first >> 3;
-            if (b.type == kEnd || (b.type > kStepModel && b.type != kMixedModel))
+            if (b.type == kEnd || b.type > kMixedModel)
                 return make_error(Errc::corrupt, at(block_at) + ": unknown block type " + std::to_string(b.type));
             if ((b.flags & ~7u) != 0)
                 return make_error(Errc::reserved_bits, at(block_at) + ": reserved block flags are set");
@@ -206,7 +209,7 @@ private:
             // the one block byte in version 2.
             return make_error(Errc::limit, at(block_at + (hdr_.version == 1 ? 2 : 1)) +
                                                ": block sizes exceed the decoder limits");
-        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kMixedModel;
+        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kTable || b.type == kMixedModel;
         if (stored && b.dsize != b.csize)
             return make_error(Errc::corrupt, at(block_at + 6) +
                                                  ": decoded size of a modeled block differs from its size");
@@ -230,6 +233,9 @@ private:
             const std::string_view payload = std::string_view(rec_).substr(b.header, b.csize);
             auto contribution = std::make_shared<WindowBlock>();
             const WindowView view = window_.view();
+            const bool step_model = b.type == kStepModel || (b.type == kMixedModel && !payload.empty() &&
+                                                             static_cast<unsigned char>(payload[0]) == kMixedStep);
+            if (steps_frame_ && !steps_ && step_model && (b.flags & kFlagWindow)) start_history(view);
             if (steps_) {
                 const std::uint64_t end = step_history_end(*steps_);
                 contribution->first_symbol = end;
@@ -278,6 +284,9 @@ private:
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed, mixed);
+                } else if (model == kTable) {
+                    r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
+                                         window_.limit() ? &contribution->items : nullptr);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,
@@ -286,24 +295,32 @@ private:
                 if (!r) return std::move(r).error();
                 if (model == kSegmentModel) ++info_.segment_model_blocks;
                 if (model == kStepModel) ++info_.step_model_blocks;
+                if (model == kTable) ++info_.table_blocks;
                 info_.segments += counts.segments;
                 info_.steps += counts.steps;
                 info_.chains += counts.chains;
                 if (block.continues && chain_open_ && counts.chains > 0) --info_.chains;
                 chain_open_ = block.open;
                 contribution->weight = counts.steps + counts.chains;
-                if (steps_ && !on_history) {
+                if (steps_frame_ && !on_history) {
                     add_steps(*contribution, block);
-                    step_history_add(*steps_, *contribution);
+                    if (steps_) step_history_add(*steps_, *contribution);
                 }
-                // The history holds the symbols: the window keeps their place only.
-                contribution->symbols = {};
-                contribution->starts = {};
+                // Once the history holds the symbols, the window keeps their
+                // place only; before, it keeps them for start_history().
+                if (steps_) {
+                    contribution->symbols = {};
+                    contribution->starts = {};
+                }
                 if (out_) {
                     if (auto rr = writer_->write(block, rendered); !rr)
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
                     info_.decoded_bytes += rendered.size();
                 }
+            }
+            if (steps_frame_ && !steps_) {
+                held_.push_back(contribution);
+                if (held_.size() > kMaxWindowBlocks) held_.pop_front();
             }
             window_.push(std::move(contribution));
             if (out_) {
@@ -312,6 +329,26 @@ private:
             }
             if (progress_) progress_(src_.offset());
         }
+    }
+
+    // The step model's history of the frame, built from the window's blocks
+    // (their positions counted from the window's start: a table rebuilt from
+    // the window alone, section 1.8) when a block first decodes on it; from
+    // then on every block is added as it is decoded. Until then no block
+    // pays for the history (the table blocks of the fast levels never do).
+    void start_history(const WindowView& view) {
+        steps_ = make_step_history();
+        for (const auto& c : view) {
+            WindowBlock* held = nullptr;
+            for (const auto& h : held_)
+                if (h.get() == c.get()) held = h.get();
+            if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
+            held->first_symbol = step_history_end(*steps_);
+            step_history_add(*steps_, *held);
+            held->symbols = {};
+            held->starts = {};
+        }
+        held_.clear();
     }
 
     Result<void> trailer() {
@@ -410,7 +447,9 @@ private:
     std::uint64_t frame_at_ = 0;
     FrameInfo info_;
     Window window_;
-    StepHistoryPtr steps_;  // frames with a window on two axes
+    StepHistoryPtr steps_;  // frames with a window on two axes, once a block needs it
+    bool steps_frame_ = false;  // a frame with a window on two axes
+    std::deque<std::shared_ptr<WindowBlock>> held_;  // before steps_: the window's blocks
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;
@@ -425,6 +464,7 @@ void add(FrameInfo& total, const FrameInfo& f) {
     total.raw_blocks += f.raw_blocks;
     total.segment_model_blocks += f.segment_model_blocks;
     total.step_model_blocks += f.step_model_blocks;
+    total.table_blocks += f.table_blocks;
     total.chains += f.chains;
     total.steps += f.steps;
     total.segments += f.segments;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "block_codec.hpp"
+#include "table_block.hpp"
 #include "window.hpp"
 
 namespace stepzip::stz {
@@ -66,6 +67,9 @@ struct BlockJob {
 /// the thorough levels the segment-model cut, chosen on the first block.
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s);
 
+/// The table-block encoder effort of a fast level (below kThoroughLevel).
+TableEffort table_effort(int level);
+
 /// The window a level declares (log2 of steps + chains).
 int window_log_for_level(int level);
 
@@ -84,7 +88,7 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
 /// type is final.
 void note_items(BlockJob& job);
 
-/// Third pass (parallel): a segment-model block coded again from `window`
+/// Third pass (parallel): a segment-model or table block coded again from `window`
 /// (whose items are fixed once every earlier block passed the second pass),
 /// kept when smaller; at the strong levels, then the block's model with
 /// mixed predictions (block type 6), kept when smaller.

@@ -19,7 +19,7 @@ namespace stepzip::stz {
 /// `window`, the models start from it (a block flagged kFlagWindow).
 /// `timed`: the frame's input format is timed (phases predicted, FORMAT.md).
 /// `mixed`: the payload of a block type 6 instead (model byte 0, then the
-/// same fields, coded with mixed predictions; docs/FORMAT.md 1.10).
+/// same fields, coded with mixed predictions; docs/FORMAT.md 1.11).
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
                                 const WindowView* window = nullptr, bool timed = false, bool mixed = false);
@@ -33,7 +33,7 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 
 /// The payload of a block type 6 of the step model (model byte 1, then the
 /// step-model fields with context order `order` (0..4), coded with mixed
-/// predictions; docs/FORMAT.md 1.10); empty when the block is not two-axis.
+/// predictions; docs/FORMAT.md 1.11); empty when the block is not two-axis.
 std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
@@ -64,7 +64,7 @@ void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::u
 std::uint64_t step_history_end(const StepHistory& h);
 
 /// `mixed` (both readers): the payload is that of a block type 6 of this
-/// model (its model byte first; mixed predictions, docs/FORMAT.md 1.10).
+/// model (its model byte first; mixed predictions, docs/FORMAT.md 1.11).
 /// `version`: the frame's format version (version 1 step models predict no
 /// chain start). `running`: with `window`, the frame's history to decode on
 /// (it then holds the block's symbols too) instead of rebuilding the window.

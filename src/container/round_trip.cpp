@@ -5,6 +5,7 @@
 // decoder's writer sees the blocks).
 #include "encoder.hpp"
 #include "modeled_block.hpp"
+#include "table_block.hpp"
 
 namespace stepzip::stz {
 
@@ -34,6 +35,8 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
     Result<void> r =
         rec.type == kChains
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
+        : rec.type == kTable
+            ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
         : job.type == kSegmentModel
             ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
                                  s.timed, mixed)

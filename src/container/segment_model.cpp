@@ -21,6 +21,7 @@
 #include "bench_hooks.hpp"
 #include "mix.hpp"
 #include "modeled_block.hpp"
+#include "mtf_list.hpp"
 #include "range_coder.hpp"
 #include "timed_phase.hpp"
 
@@ -184,20 +185,7 @@ private:
 };
 
 // Shapes that followed a shape (move to front, at most kSuccessors).
-struct Successors {
-    std::array<std::uint32_t, kSuccessors> id;
-    std::uint32_t size = 0;
-    void use(std::uint32_t s) {
-        std::uint32_t k = 0;
-        while (k < size && id[k] != s) ++k;
-        if (k == size) {
-            if (size < kSuccessors) ++size;
-            k = size - 1;
-        }
-        for (; k > 0; --k) id[k] = id[k - 1];
-        id[0] = s;
-    }
-};
+using Successors = MtfList<kSuccessors>;
 
 // Open-addressing hash table from a 64-bit key to a nonzero 32-bit value
 // (0: absent). Grows at half load.

@@ -95,7 +95,9 @@ chmod 700 "$W"
 table=$(printf '01234567%.0s' {1..32})
 { printf '0 0 '; head -c 1000000 /dev/urandom | tr '\000-\377' "$table"; echo; } >big.fc
 [ "$(wc -c <big.fc)" -eq 1000005 ] || fail "setup: big.fc has the wrong size"
-"$Z" compress -q big.fc -o big.stz -L 1 || fail "setup: compress big.fc"
+# Level 10: the step model, whose decoder takes long enough to be interrupted
+# (the fast levels' table blocks decode a random walk too quickly).
+"$Z" compress -q big.fc -o big.stz -L 10 || fail "setup: compress big.fc"
 {
     echo "G0 X0 Y0"
     for k in $(seq 1 200); do echo "G1 X$((k * 5000)) Y$(((k % 2) * 3000000))"; done

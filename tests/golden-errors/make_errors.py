@@ -160,26 +160,26 @@ files.update({
     'v2_partial_second_magic': ('corrupt', 'byte %d' % len(good2), good2 + good2[:3]),
     'v2_truncated_second_frame': ('truncated', 'byte %d' % (len(good2) + end2), good2 + good2[:end2]),
 })
-# Block type 6 (docs/FORMAT.md 1.10), from tests/golden/v2/strong_hershey.fc.stz:
+
+
+def put_varint(v):
+    """A varint as the format writes it (docs/FORMAT.md 1.1)."""
+    out = bytearray()
+    while v >= 0x80:
+        out.append((v & 0x7F) | 0x80)
+        v >>= 7
+    out.append(v)
+    return bytes(out)
+
+
+# Block type 6 (docs/FORMAT.md 1.11), from tests/golden/v2/strong_hershey.fc.stz:
 # one mixed-model block of the segment model, no window.
 strong = open(os.path.join(here, '..', 'golden', 'v2', 'strong_hershey.fc.stz'), 'rb').read()
 assert strong[8] == 6, 'v2/strong_hershey.fc.stz should hold a mixed-model block'
 s_csize, s_payload = varint_at(strong, 9)
 assert strong[s_payload] == 0, 'v2/strong_hershey.fc.stz should hold a mixed segment model'
-
-
-def varint(v):
-    out = bytearray()
-    while True:
-        if v < 0x80:
-            out.append(v)
-            return bytes(out)
-        out.append((v & 0x7F) | 0x80)
-        v >>= 7
-
-
 s_end = s_payload + s_csize
-short = strong[:9] + varint(s_csize - 1) + strong[s_payload:s_end - 1]
+short = strong[:9] + put_varint(s_csize - 1) + strong[s_payload:s_end - 1]
 short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
 files.update({
     # The model byte names no model.
@@ -187,6 +187,56 @@ files.update({
     # The range-coded stream lost its last byte (size and checksum redone):
     # the decoder notices at the payload's end.
     'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
+})
+# Version 2, table block (docs/FORMAT.md 1.10), from tests/golden/v2/table.fc.stz:
+# two table blocks (the second flagged `window`) and a step-model block.
+goodT = open(os.path.join(here, '..', 'golden', 'v2', 'table.fc.stz'), 'rb').read()
+assert goodT[4] == 2 and goodT[8] & 7 == 5, 'v2/table.fc.stz should start with a table block'
+csizeT, payT = varint_at(goodT, 9)
+endT = payT + csizeT
+payloadT = goodT[payT:endT]
+
+
+def table_block(payload):
+    """goodT with its first block's payload replaced (size and checksum redone)."""
+    body = goodT[8:9] + put_varint(len(payload)) + payload
+    return goodT[:8] + body + struct.pack('<I', check32(body)) + goodT[endT + 4:]
+
+
+# Walk the payload's fields (section 1.10) to the table set and the rANS size.
+at = 0
+for _ in range(4):  # nchains, nsegments, nsteps, grid
+    _, at = varint_at(payloadT, at)
+_, at = varint_at(payloadT, at)  # layout size
+stored, at = varint_at(payloadT, at)
+at += stored
+set_at = at
+table_set, at = varint_at(payloadT, at)
+for t in range(50):
+    if not (table_set >> t) & 1:
+        continue
+    n1, at = varint_at(payloadT, at)
+    if n1 == 0:
+        _, at = varint_at(payloadT, at)  # the one symbol
+        continue
+    at += 1  # precision
+    for _ in range(n1 + 1):
+        _, at = varint_at(payloadT, at)  # gap
+        _, at = varint_at(payloadT, at)  # frequency - 1
+rans_at = at
+rans_size, after = varint_at(payloadT, rans_at)
+assert after + rans_size < len(payloadT)
+whereT = 'byte 8 (block 0) payload byte %d'
+files.update({
+    # Bit 50 of the table set: no such table.
+    'v2_table_set': ('corrupt', whereT % set_at,
+                     table_block(payloadT[:set_at] + put_varint(table_set | (1 << 50)) +
+                                 payloadT[set_at + len(put_varint(table_set)):])),
+    # A rANS stream size past the payload's end.
+    'v2_table_rans_size': ('corrupt', whereT % rans_at,
+                           table_block(payloadT[:rans_at] + put_varint(len(payloadT)) + payloadT[after:])),
+    # A byte after the extra bits: every bit is read where the payload ended.
+    'v2_table_extra_byte': ('corrupt', whereT % len(payloadT), table_block(payloadT + b'\x00')),
 })
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)

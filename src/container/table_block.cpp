@@ -1,0 +1,937 @@
+// Table blocks (docs/FORMAT.md "Table block"): operations over the segment
+// items, fields in static per-block rANS tables chosen by context.
+// One template (TableCoder<Io>) runs both directions, so the encoder and
+// the decoder cannot disagree on a context or a state update.
+// Complexity: per segment one operation symbol, and for a shape coded in
+// full a few field symbols; O(rank) list work; a match copies its items.
+// Memory: O(items) plus the tables (at most 50 x 4096 slots).
+#include "table_block.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <deque>
+#include <numeric>
+
+#include "../common/bytes.hpp"
+#include "modeled_block.hpp"
+#include "mtf_list.hpp"
+#include "stepzip/interpolate/segment.hpp"
+#include "table_rans.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+using namespace table;
+
+// Tables, in payload order (docs/FORMAT.md "Table block").
+constexpr int kTOp = 0;       // 6: previous operation class
+constexpr int kTLead = 6;     // 16: min(bit_length(prev L), 7) * 2 + (turn != 0)
+constexpr int kTMinor = 22;   // 12: min(bit_length(L), 11)
+constexpr int kTPhase = 34;   // 12: min(bit_length(L), 11)
+constexpr int kTStart = 46;   // 2: axis 0, other axes
+constexpr int kTOffset = 48;  // 1
+constexpr int kTDir = 49;     // 1: N-D direction
+constexpr int kTables = 50;
+
+// Operation symbols.
+constexpr unsigned kOpEnd = 0, kOpStart = 1, kOpSucc = 2, kOpRec = 6, kOpRecBucket = 14, kOpFull = 28,
+                   kOpMatch = 36, kOps = 90;
+constexpr unsigned kOffsetBuckets = 3;  // offset symbols: 0..2 repeat offsets, then bucket_of(offset - 1)
+
+// Previous-operation classes (operation-table contexts).
+enum OpClass : int { kAfterStart = 0, kAfterSucc, kAfterRec, kAfterFull, kAfterMatch, kAfterEnd };
+
+constexpr std::size_t kRecent = 1024;  // recent-shapes ring
+constexpr std::size_t kSucc = 4;       // successors per shape
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+// History entries: kind in the top two bits, index below.
+constexpr std::uint32_t kSegTag = 0u << 30, kStartTag = 1u << 30, kEndTag = 2u << 30, kIndexMask = (1u << 30) - 1;
+
+unsigned alphabet(int t) {
+    if (t < kTLead) return kOps;
+    if (t < kTOffset) return kBuckets;
+    if (t == kTOffset) return kOffsetBuckets + kBuckets;
+    return 512;
+}
+
+int cap(int v, int hi) { return v < hi ? v : hi; }
+
+constexpr int kOctantOf[8] = {0, 3, 7, 4, 1, 2, 6, 5};  // lead * 4 + negmask -> octant
+constexpr int kCodeOfOctant[8] = {0, 4, 5, 1, 3, 7, 6, 2};
+
+std::uint64_t zig(std::int64_t v) { return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63); }
+std::int64_t unzig(std::uint64_t u) { return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1); }
+
+// The value of bucket symbol `s` (< kBuckets) with its extra bits read by `bits`.
+template <class Bits>
+std::uint64_t bucket_value(unsigned s, Bits&& bits) {
+    if (s < 8) return s;
+    const int k = static_cast<int>((s - 8) / 2) + 3;
+    const std::uint64_t top = (std::uint64_t{1} << k) | (std::uint64_t{(s - 8) & 1} << (k - 1));
+    return top | bits(k - 1);
+}
+
+// Encoder side of the coder: records symbols (counted per table) and writes
+// extra bits.
+struct EncSide {
+    static constexpr bool kDecode = false;
+    std::vector<std::pair<std::uint8_t, std::uint16_t>> syms;
+    std::array<std::vector<std::uint32_t>, kTables> count;
+    BitWriter bits;
+    bool failed = false;
+    EncSide() {
+        for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t), 0);
+    }
+    unsigned sym(int t, unsigned s) {
+        syms.emplace_back(static_cast<std::uint8_t>(t), static_cast<std::uint16_t>(s));
+        ++count[static_cast<std::size_t>(t)][s];
+        return s;
+    }
+    std::uint64_t raw(int n, std::uint64_t v) {
+        if (n > 0) bits.put(v, n);
+        return v;
+    }
+};
+
+// Decoder side: the block's tables, the rANS stream and the bit stream.
+struct DecSide {
+    static constexpr bool kDecode = true;
+    const std::array<DecodeTable, kTables>* tables;
+    RansDecoder rans;
+    BitReader bits;
+    bool failed = false;
+    unsigned sym(int t, unsigned) {
+        const DecodeTable& d = (*tables)[static_cast<std::size_t>(t)];
+        if (d.slots.empty()) {
+            failed = true;  // a table the payload left unused
+            return 0;
+        }
+        return rans.get(d);
+    }
+    std::uint64_t raw(int n, std::uint64_t) { return n > 0 ? bits.get(n) : 0; }
+};
+
+// Move-to-front ring of shape ids, newest at rank 0.
+class RecentRing {
+public:
+    std::size_t size() const { return size_; }
+    std::uint32_t at(std::size_t r) const { return ring_[(head_ + r) & (kRecent - 1)]; }
+    void push_front(std::uint32_t id) {
+        head_ = (head_ + kRecent - 1) & (kRecent - 1);
+        ring_[head_] = id;
+        if (size_ < kRecent) ++size_;
+    }
+    void to_front(std::size_t r) {
+        const std::uint32_t id = at(r);
+        for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
+        ring_[head_] = id;
+    }
+
+private:
+    std::array<std::uint32_t, kRecent> ring_{};
+    std::size_t head_ = 0, size_ = 0;
+};
+
+using SuccList = MtfList<kSucc>;
+
+// Canonical form of a segment: degenerate phases at their only value,
+// unused phases zero (as the decoder rebuilds it).
+Segment canonical(Profile p, const Segment& s, int axes) {
+    Segment c{};
+    c.delta = s.delta;
+    for (int j = 0; j < phase_count(p, axes); ++j) {
+        const auto ab = *phase_arguments(p, s, axes, j);
+        const PhaseRange r = phase_range(p, ab.first, ab.second);
+        c.phase[static_cast<std::size_t>(j)] = r.hi - r.lo == 1 ? r.lo : s.phase[static_cast<std::size_t>(j)];
+    }
+    return c;
+}
+
+template <class Io>
+class TableCoder {
+public:
+    TableCoder(Io& io, Profile p, int axes) : io_(io), p_(p), axes_(axes), phases_(phase_count(p, axes)) {
+        succ_.resize(1);  // succ_[0]: after no shape
+    }
+
+    Io& io_;
+    Profile p_;
+    int axes_;
+    int phases_;
+    std::int64_t grid_ = 1;
+    // Decoded content: every segment and chain start of the block, and the
+    // history of items over them.
+    std::vector<const Segment*> segs_;  // into own_ or the window's items
+    std::deque<Segment> own_;
+    std::vector<Point> starts_;
+    std::vector<std::uint32_t> hist_;
+    // Shapes: id -> index in segs_ of the segment coded in full.
+    std::vector<std::uint32_t> shape_;
+    std::vector<SuccList> succ_;  // by id + 1 (0: none)
+    RecentRing recent_;
+    std::uint32_t prev_shape_ = kNone;
+    int prev_op_ = kAfterEnd;
+    // Field contexts.
+    int prev_oct_ = 0, prev_turn_ = 0;
+    unsigned prev_dir_ = 0;
+    std::int64_t prev_l_ = 1;
+    std::array<std::int64_t, kMaxAxes> prev_s_{};
+    std::array<std::uint64_t, 3> rep_{1, 2, 3};
+    const char* error_ = nullptr;
+
+    // Starts the block from the window (docs/FORMAT.md "Table block"): the
+    // items of the window's blocks, oldest first, enter the history (and
+    // nothing else) so that matches may copy them. `canon`: make their
+    // segments canonical (the encoder's cuts may not be).
+    void prime(const WindowView& window, bool canon) {
+        std::size_t n = 0, c = 0;
+        for (const auto& b : window) {
+            n += b->items.segments.size();
+            c += b->items.starts.size();
+        }
+        segs_.reserve(n);
+        hist_.reserve(n + 2 * c);
+        starts_.reserve(c);
+        for (const auto& b : window) {
+            const SegmentItems& w = b->items;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                starts_.push_back(w.starts[c]);
+                hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                    if (canon) own_.push_back(canonical(p_, w.segments[k], axes_));
+                    segs_.push_back(canon ? &own_.back() : &w.segments[k]);
+                    hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+                }
+                hist_.push_back(kEndTag);
+            }
+        }
+    }
+
+    bool fail(const char* what) {
+        if (!error_) error_ = what;
+        io_.failed = true;
+        return false;
+    }
+
+    std::uint64_t code_uint(int t, std::uint64_t want) {
+        int nb = 0;
+        std::uint64_t extra = 0;
+        unsigned s = Io::kDecode ? 0 : bucket_of(want, nb, extra);
+        s = io_.sym(t, s);
+        if constexpr (Io::kDecode) {
+            return bucket_value(s, [&](int n) { return io_.raw(n, 0); });
+        } else {
+            io_.raw(nb, extra);
+            return want;
+        }
+    }
+
+    unsigned code_op(unsigned want) { return io_.sym(kTOp + prev_op_, want); }
+
+    // A chain start: the delta over the grid per axis.
+    bool code_start(const Point& want, Point& delta) {
+        for (int i = 0; i < axes_; ++i) {
+            const std::uint64_t v = code_uint(kTStart + (i != 0), Io::kDecode ? 0 : zig(want[i] / grid_));
+            delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(unzig(v)) * static_cast<std::uint64_t>(grid_));
+        }
+        starts_.push_back(delta);
+        hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
+        prev_shape_ = kNone;
+        prev_op_ = kAfterStart;
+        return !io_.failed;
+    }
+
+    void code_end() {
+        hist_.push_back(kEndTag);
+        prev_op_ = kAfterEnd;
+    }
+
+    // Rank of a recent shape: 0..7 in the operation, above in buckets.
+    unsigned rec_op(std::size_t r, int& nb, std::uint64_t& extra) const {
+        nb = 0;
+        extra = 0;
+        if (r < 8) return kOpRec + static_cast<unsigned>(r);
+        const int k = std::bit_width(r) - 1;
+        nb = k - 1;
+        extra = r & ((std::size_t{1} << (k - 1)) - 1);
+        return kOpRecBucket + 2 * static_cast<unsigned>(k - 3) + static_cast<unsigned>((r >> (k - 1)) & 1);
+    }
+
+    // A segment given by shape id `id` (coded by successor or recent rank).
+    void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
+        const Segment seg = *segs_[shape_[id]];
+        if (from_recent_rank) recent_.to_front(r);
+        else recent_.push_front(id);
+        succ_[prev_shape_ + 1].use(id);
+        prev_shape_ = id;
+        push_seg(seg);
+        prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
+    }
+
+    void push_seg(const Segment& seg) {
+        own_.push_back(seg);
+        segs_.push_back(&own_.back());
+        hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+        note_fields(seg);
+    }
+
+    void note_fields(const Segment& seg) {
+        const int lead = leading_axis(seg.delta, axes_);
+        unsigned neg = 0;
+        for (int i = 0; i < axes_; ++i)
+            if (seg.delta[i] < 0) neg |= 1u << i;
+        if (axes_ == 2) {
+            const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
+            prev_turn_ = (oct - prev_oct_) & 7;
+            prev_oct_ = oct;
+        } else {
+            prev_dir_ = (static_cast<unsigned>(lead) << 6) | neg;
+            prev_turn_ = 0;
+        }
+        prev_l_ = std::llabs(seg.delta[lead]);
+        int j = 0;
+        for (int i = 0; i < axes_; ++i)
+            if (i != lead) prev_s_[static_cast<std::size_t>(j++)] = std::llabs(seg.delta[i]);
+    }
+
+    // A segment coded in full after its operation (2D: the operation gave
+    // the turn; N-D: whether the direction is the previous one).
+    bool code_full(unsigned op, const Segment* want) {
+        int lead = 0;
+        unsigned neg = 0;
+        int turn = 0;
+        if (axes_ == 2) {
+            turn = static_cast<int>(op - kOpFull);
+            const int code = kCodeOfOctant[(prev_oct_ + turn) & 7];
+            lead = code >> 2;
+            neg = static_cast<unsigned>(code & 3);
+        } else {
+            if (op - kOpFull > 1) return fail("bad operation");
+            unsigned dir = prev_dir_;
+            if (op == kOpFull + 1) {
+                unsigned w = 0;
+                if constexpr (!Io::kDecode) {
+                    const int wl = leading_axis(want->delta, axes_);
+                    for (int i = 0; i < axes_; ++i)
+                        if (want->delta[i] < 0) w |= 1u << i;
+                    w |= static_cast<unsigned>(wl) << 6;
+                }
+                dir = io_.sym(kTDir, w);
+                turn = 1;
+            }
+            lead = static_cast<int>(dir >> 6);
+            neg = dir & 63u;
+            if (lead >= axes_ || (neg >> axes_) != 0) return fail("bad direction");
+        }
+        const int lctx = cap(std::bit_width(static_cast<std::uint64_t>(prev_l_)), 7) * 2 + (turn != 0);
+        const std::uint64_t l1 =
+            code_uint(kTLead + lctx, Io::kDecode ? 0 : static_cast<std::uint64_t>(std::llabs(want->delta[lead]) - 1));
+        if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
+        const std::int64_t l = static_cast<std::int64_t>(l1) + 1;
+        const int bl = cap(std::bit_width(static_cast<std::uint64_t>(l)), 11);
+        Segment seg{};
+        int j = 0;
+        for (int i = 0; i < axes_; ++i) {
+            std::int64_t v = l;
+            if (i != lead) {
+                const std::int64_t pred = std::min(l, (l * prev_s_[static_cast<std::size_t>(j)] + prev_l_ / 2) / prev_l_);
+                const std::uint64_t z =
+                    code_uint(kTMinor + bl, Io::kDecode ? 0 : zig(std::llabs(want->delta[i]) - pred));
+                if (io_.failed || z > (std::uint64_t{1} << 32)) return fail("bad minor total");
+                v = pred + unzig(z);
+                if (v < 0 || v > l || (i < lead && v == l)) return fail("minor total out of range");
+                ++j;
+            }
+            if ((neg >> i) & 1u) {
+                if (v == 0) return fail("sign on a resting axis");
+                v = -v;
+            }
+            seg.delta[i] = v;
+        }
+        for (int k = 0; k < phases_; ++k) {
+            const auto ab = *phase_arguments(p_, seg, axes_, k);
+            const PhaseRange r = phase_range(p_, ab.first, ab.second);
+            if (r.hi - r.lo == 1) {
+                seg.phase[static_cast<std::size_t>(k)] = r.lo;
+                continue;
+            }
+            const std::int64_t def = default_phase(p_, ab.first, ab.second);
+            const std::uint64_t z =
+                code_uint(kTPhase + bl, Io::kDecode ? 0 : zig(want->phase[static_cast<std::size_t>(k)] - def));
+            if (io_.failed || z > (std::uint64_t{1} << 62)) return fail("phase out of range");
+            const std::int64_t f = def + unzig(z);
+            if (!r.contains(f)) return fail("phase out of range");
+            seg.phase[static_cast<std::size_t>(k)] = f;
+        }
+        const auto id = static_cast<std::uint32_t>(shape_.size());
+        shape_.push_back(static_cast<std::uint32_t>(segs_.size()));
+        succ_.emplace_back();
+        recent_.push_front(id);
+        succ_[prev_shape_ + 1].use(id);
+        prev_shape_ = id;
+        push_seg(seg);
+        prev_op_ = kAfterFull;
+        return true;
+    }
+
+    // A match's offset (1 = the item just before), by repeat offset or in full.
+    std::uint64_t code_offset(std::uint64_t want) {
+        unsigned s = 0;
+        int nb = 0;
+        std::uint64_t extra = 0;
+        if constexpr (!Io::kDecode) {
+            s = 3;
+            for (unsigned k = 0; k < 3; ++k)
+                if (rep_[k] == want) {
+                    s = k;
+                    break;
+                }
+            if (s == 3) s = kOffsetBuckets + bucket_of(want - 1, nb, extra);
+        }
+        s = io_.sym(kTOffset, s);
+        std::uint64_t off;
+        if (s < kOffsetBuckets) {
+            off = rep_[s];
+            for (unsigned k = s; k > 0; --k) rep_[k] = rep_[k - 1];
+        } else {
+            if constexpr (Io::kDecode) off = 1 + bucket_value(s - kOffsetBuckets, [&](int n) { return io_.raw(n, 0); });
+            else {
+                io_.raw(nb, extra);
+                off = want;
+            }
+            rep_[2] = rep_[1];
+            rep_[1] = rep_[0];
+        }
+        rep_[0] = off;
+        return off;
+    }
+
+    // Copies `len` items from `off` items back, one by one (they may overlap).
+    void copy(std::uint64_t off, std::uint64_t len) {
+        const std::size_t from = hist_.size() - static_cast<std::size_t>(off);
+        std::uint32_t last_seg = kNone;
+        for (std::size_t k = 0; k < len; ++k) {
+            const std::uint32_t e = hist_[from + k];
+            hist_.push_back(e);
+            if ((e & ~kIndexMask) == kSegTag) last_seg = e;
+        }
+        if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
+        prev_shape_ = kNone;
+        prev_op_ = kAfterMatch;
+    }
+};
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+    h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    return h * 0xBF58476D1CE4E5B9ull;
+}
+
+std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
+    std::uint64_t h = tag;
+    for (auto v : d) h = mix(h, static_cast<std::uint64_t>(v));
+    if (ph)
+        for (auto v : *ph) h = mix(h, static_cast<std::uint64_t>(v));
+    return h;
+}
+
+// Normalized frequencies of `count` for precision `prec` (every used symbol
+// at least 1, summing to 2^prec).
+std::vector<std::uint32_t> normalize(const std::vector<std::uint32_t>& count, std::uint64_t total, int prec) {
+    const std::uint32_t want = 1u << prec;
+    std::vector<std::uint32_t> f(count.size(), 0);
+    std::uint32_t sum = 0;
+    std::size_t big = 0;
+    for (std::size_t s = 0; s < count.size(); ++s) {
+        if (count[s] == 0) continue;
+        f[s] = std::max<std::uint32_t>(1, static_cast<std::uint32_t>((std::uint64_t{count[s]} * want) / total));
+        sum += f[s];
+        if (count[s] > count[big] || count[big] == 0) big = s;
+    }
+    // Fix the sum: take from or give to the largest symbols first.
+    while (sum != want) {
+        if (sum < want) {
+            f[big] += want - sum;
+            sum = want;
+        } else {
+            std::size_t best = count.size();
+            for (std::size_t s = 0; s < count.size(); ++s)
+                if (f[s] > 1 && (best == count.size() || f[s] > f[best])) best = s;
+            const std::uint32_t take = std::min(sum - want, f[best] - 1);
+            f[best] -= take;
+            sum -= take;
+        }
+    }
+    return f;
+}
+
+std::size_t varint_size(std::uint64_t v) {
+    std::size_t n = 1;
+    while (v >= 0x80) {
+        v >>= 7;
+        ++n;
+    }
+    return n;
+}
+
+// The table header of `count` at the cheapest precision (header bytes +
+// coded bits), appended to `out`; fills the encode table.
+void put_table(std::string& out, const std::vector<std::uint32_t>& count, EncodeTable& enc) {
+    std::uint64_t total = 0;
+    unsigned used = 0;
+    for (auto c : count) {
+        total += c;
+        used += c != 0;
+    }
+    enc.freq.assign(count.size(), 0);
+    enc.start.assign(count.size(), 0);
+    put_varint(out, used - 1);
+    if (used == 1) {
+        for (std::size_t s = 0; s < count.size(); ++s)
+            if (count[s] != 0) {
+                put_varint(out, s);
+                enc.freq[s] = 1;
+            }
+        enc.precision = 0;
+        return;
+    }
+    int best_p = 0;
+    double best_cost = 0;
+    std::vector<std::uint32_t> best_f;
+    for (int prec = std::bit_width(used - 1); prec <= kMaxPrecision; ++prec) {
+        const auto f = normalize(count, total, prec);
+        double bits = 0;
+        std::size_t header = 0;
+        for (std::size_t s = 0; s < count.size(); ++s)
+            if (count[s] != 0) {
+                bits += count[s] * (prec - std::log2(static_cast<double>(f[s])));
+                header += varint_size(f[s] - 1);
+            }
+        const double cost = bits / 8 + static_cast<double>(header);
+        if (best_f.empty() || cost < best_cost) {
+            best_cost = cost;
+            best_p = prec;
+            best_f = f;
+        }
+    }
+    out.push_back(static_cast<char>(best_p));
+    std::uint32_t start = 0;
+    std::size_t prev = 0;
+    bool first = true;
+    for (std::size_t s = 0; s < count.size(); ++s) {
+        if (count[s] == 0) continue;
+        put_varint(out, first ? s : s - prev - 1);
+        put_varint(out, best_f[s] - 1);
+        first = false;
+        prev = s;
+        enc.freq[s] = best_f[s];
+        enc.start[s] = start;
+        start += best_f[s];
+    }
+    enc.precision = best_p;
+}
+
+// Reads one table header into `d` (the decode table). Errors name the byte.
+bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
+    std::uint64_t used;
+    if (!cur.varint(used) || used >= size) return false;
+    ++used;
+    if (used == 1) {
+        std::uint64_t s;
+        if (!cur.varint(s) || s >= size) return false;
+        d.precision = 0;
+        d.slots.assign(1, Slot{static_cast<std::uint16_t>(s), 1, 0});
+        return true;
+    }
+    std::uint8_t prec;
+    if (!cur.u8(prec) || prec < 1 || prec > kMaxPrecision || (std::uint64_t{1} << prec) < used) return false;
+    d.precision = prec;
+    d.slots.resize(std::size_t{1} << prec);
+    std::uint64_t s = 0, start = 0;
+    for (std::uint64_t k = 0; k < used; ++k) {
+        std::uint64_t gap, f1;
+        if (!cur.varint(gap) || !cur.varint(f1)) return false;
+        s = k == 0 ? gap : s + gap + 1;
+        if (gap >= size || s >= size || f1 >= (std::uint64_t{1} << prec) || start + f1 + 1 > (std::uint64_t{1} << prec))
+            return false;
+        for (std::uint64_t i = 0; i <= f1; ++i)
+            d.slots[start + i] = Slot{static_cast<std::uint16_t>(s), static_cast<std::uint16_t>(f1 + 1),
+                                      static_cast<std::uint16_t>(start)};
+        start += f1 + 1;
+    }
+    return start == (std::uint64_t{1} << prec);
+}
+
+struct BlockHead {
+    std::uint64_t nchains = 0, nsegments = 0, nsteps = 0, grid = 1;
+};
+
+// Gcd of every chain start delta (1 when none or too large).
+std::uint64_t start_grid(const Block& block, const std::vector<std::vector<Segment>>& segs) {
+    std::uint64_t grid = 0;
+    Point ref{};
+    for (std::size_t i = 0; i < block.chains.size(); ++i) {
+        const Chain& chain = block.chains[i];
+        for (int a = 0; a < block.axes; ++a) grid = std::gcd(grid, magnitude(wrap_sub(chain.start[a], ref[a])));
+        ref = chain.start;
+        for (const Segment& s : segs[i])
+            for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+    }
+    return grid == 0 || grid > (std::uint64_t{1} << 62) ? 1 : grid;
+}
+
+}  // namespace
+
+std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
+                              const TableEffort& effort, const WindowView* window) {
+    const int axes = block.axes;
+    BlockHead h;
+    h.nchains = block.chains.size();
+    // The items with their keys.
+    std::vector<std::uint32_t> items;  // as history entries: index into cs / deltas
+    std::vector<Segment> cs;
+    std::vector<Point> deltas;
+    std::vector<std::uint64_t> keys;
+    // The window's items first (matches may reach them), then the block's.
+    if (window)
+        for (const auto& b : *window) {
+            const SegmentItems& w = b->items;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                deltas.push_back(w.starts[c]);
+                items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
+                keys.push_back(key_of(1, w.starts[c], nullptr));
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                    cs.push_back(canonical(p, w.segments[k], axes));
+                    items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
+                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                }
+                items.push_back(kEndTag);
+                keys.push_back(2);
+            }
+        }
+    const std::size_t first = items.size();
+    {
+        Point ref{};
+        for (std::size_t i = 0; i < block.chains.size(); ++i) {
+            const Chain& chain = block.chains[i];
+            Point d{};
+            for (int a = 0; a < axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
+            deltas.push_back(d);
+            items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
+            keys.push_back(key_of(1, d, nullptr));
+            ref = chain.start;
+            for (const Segment& s : segs[i]) {
+                cs.push_back(canonical(p, s, axes));
+                items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
+                keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                ++h.nsegments;
+                h.nsteps += static_cast<std::uint64_t>(segment_length(s.delta, axes, profile_eight_connected(p)));
+                for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+            }
+            items.push_back(kEndTag);
+            keys.push_back(2);
+        }
+    }
+    h.grid = start_grid(block, segs);
+    auto same = [&](std::size_t a, std::size_t b) {
+        if (keys[a] != keys[b]) return false;
+        const std::uint32_t x = items[a], y = items[b];
+        if ((x & ~kIndexMask) != (y & ~kIndexMask)) return false;
+        if ((x & ~kIndexMask) == kSegTag) return cs[x & kIndexMask] == cs[y & kIndexMask];
+        if ((x & ~kIndexMask) == kStartTag) return deltas[x & kIndexMask] == deltas[y & kIndexMask];
+        return true;
+    };
+    const std::size_t n = items.size();
+    auto match_len = [&](std::size_t i, std::size_t j) {
+        std::size_t l = 0;
+        while (i + l < n && same(i + l, j + l)) ++l;
+        return l;
+    };
+
+    EncSide io;
+    TableCoder<EncSide> coder(io, p, axes);
+    coder.grid_ = static_cast<std::int64_t>(h.grid);
+    if (window) coder.prime(*window, true);
+    // Shape keys by id, for the encoder's searches.
+    std::vector<std::uint64_t> shape_key;
+    auto shape_is = [&](std::uint32_t id, std::size_t item) {
+        return shape_key[id] == keys[item] && *coder.segs_[coder.shape_[id]] == cs[items[item] & kIndexMask];
+    };
+
+    const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
+    std::vector<std::uint32_t> table(std::size_t{1} << hash_bits, 0);
+    auto hash3 = [&](std::size_t i) {
+        return static_cast<std::size_t>(mix(mix(keys[i], keys[i + 1]), keys[i + 2]) >> (64 - hash_bits));
+    };
+    auto insert = [&](std::size_t i) {
+        if (i + 3 <= n) table[hash3(i)] = static_cast<std::uint32_t>(i + 1);
+    };
+    const std::size_t min_match = static_cast<std::size_t>(std::max(3, effort.min_match));
+    const std::size_t min_rep = static_cast<std::size_t>(std::max(1, effort.min_rep_match));
+    const std::size_t search = static_cast<std::size_t>(std::clamp(effort.recent_search, 0, static_cast<int>(kRecent)));
+
+    for (std::size_t i = 0; i < first; ++i) insert(i);
+    for (std::size_t i = first; i < n;) {
+        // A match: a repeat offset first, then the hash candidate.
+        std::size_t len = 0, off = 0;
+        for (int r = 0; r < 3; ++r) {
+            const std::uint64_t o = coder.rep_[static_cast<std::size_t>(r)];
+            if (o > i) continue;
+            const std::size_t l = match_len(i, i - o);
+            if (l > len) {
+                len = l;
+                off = o;
+            }
+        }
+        if (len < min_rep) len = 0;
+        if (i + 3 <= n) {
+            const std::size_t hh = hash3(i);
+            const std::uint32_t cand = table[hh];
+            table[hh] = static_cast<std::uint32_t>(i + 1);
+            if (cand != 0) {
+                const std::size_t j = cand - 1;
+                const std::size_t l = match_len(i, j);
+                if (l >= min_match && l > len + 2) {
+                    len = l;
+                    off = i - j;
+                }
+            }
+        }
+        if (len > 0) {
+            unsigned s = 0;
+            int nb;
+            std::uint64_t extra;
+            s = bucket_of(len - 1, nb, extra);
+            coder.code_op(kOpMatch + s);
+            io.raw(nb, extra);
+            coder.code_offset(off);
+            coder.copy(off, len);
+            for (std::size_t k = 1; k < len; ++k) insert(i + k);
+            i += len;
+            continue;
+        }
+        const std::uint32_t e = items[i];
+        const std::uint32_t kind = e & ~kIndexMask;
+        if (kind == kStartTag) {
+            coder.code_op(kOpStart);
+            Point d{};
+            coder.code_start(deltas[e & kIndexMask], d);
+        } else if (kind == kEndTag) {
+            coder.code_op(kOpEnd);
+            coder.code_end();
+        } else {
+            const SuccList& sl = coder.succ_[coder.prev_shape_ + 1];
+            std::uint32_t r = 0;
+            while (r < sl.size && !shape_is(sl.id[r], i)) ++r;
+            if (r < sl.size) {
+                coder.code_op(kOpSucc + r);
+                coder.take_shape(sl.id[r], false, 0);
+            } else {
+                std::size_t q = 0;
+                const std::size_t lim = std::min(search, coder.recent_.size());
+                while (q < lim && !shape_is(coder.recent_.at(q), i)) ++q;
+                if (q < lim) {
+                    int nb;
+                    std::uint64_t extra;
+                    coder.code_op(coder.rec_op(q, nb, extra));
+                    io.raw(nb, extra);
+                    coder.take_shape(coder.recent_.at(q), true, q);
+                } else {
+                    const Segment& want = cs[e & kIndexMask];
+                    unsigned op = kOpFull;
+                    if (axes == 2) {
+                        const int lead = leading_axis(want.delta, 2);
+                        unsigned neg = 0;
+                        for (int a = 0; a < 2; ++a)
+                            if (want.delta[a] < 0) neg |= 1u << a;
+                        op = kOpFull + static_cast<unsigned>((kOctantOf[lead * 4 + static_cast<int>(neg)] - coder.prev_oct_) & 7);
+                    } else {
+                        const int lead = leading_axis(want.delta, axes);
+                        unsigned dir = static_cast<unsigned>(lead) << 6;
+                        for (int a = 0; a < axes; ++a)
+                            if (want.delta[a] < 0) dir |= 1u << a;
+                        op = kOpFull + (dir != coder.prev_dir_);
+                    }
+                    coder.code_op(op);
+                    coder.code_full(op, &want);
+                    shape_key.push_back(keys[i]);
+                }
+            }
+        }
+        ++i;
+    }
+
+    std::string out;
+    put_varint(out, h.nchains);
+    put_varint(out, h.nsegments);
+    put_varint(out, h.nsteps);
+    put_varint(out, h.grid);
+    put_layout(out, block.layout);
+    std::array<EncodeTable, kTables> enc;
+    std::uint64_t used = 0;
+    for (int t = 0; t < kTables; ++t)
+        for (auto c : io.count[static_cast<std::size_t>(t)]) used |= std::uint64_t{c != 0} << t;
+    put_varint(out, used);
+    for (int t = 0; t < kTables; ++t)
+        if ((used >> t) & 1) put_table(out, io.count[static_cast<std::size_t>(t)], enc[static_cast<std::size_t>(t)]);
+    RansEncoder rans;
+    for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
+    const std::string stream = rans.finish();
+    const std::string extra_bits = io.bits.finish();
+    put_varint(out, stream.size());
+    out += stream;
+    out += extra_bits;
+    return out;
+}
+
+Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
+                              BlockCounts& counts, const std::string& where, const WindowView* window,
+                              SegmentItems* items) {
+    Cursor cur(payload);
+    auto error = [&](Errc code, std::size_t at, const std::string& what) {
+        return make_error(code, where + " byte " + std::to_string(at) + ": " + what);
+    };
+    BlockHead h;
+    if (!cur.varint(h.nchains) || !cur.varint(h.nsegments) || !cur.varint(h.nsteps))
+        return error(Errc::corrupt, cur.pos(), "bad payload header");
+    if (h.nchains > kMaxBlockChains || h.nsegments > kMaxBlockSteps || h.nsteps > kMaxBlockSteps)
+        return error(Errc::limit, 0, "payload declares more chains, segments or steps than the limits");
+    if (!cur.varint(h.grid) || h.grid == 0 || h.grid > (std::uint64_t{1} << 62))
+        return error(Errc::corrupt, cur.pos(), "bad start grid");
+    const std::size_t layout_at = cur.pos();
+    auto layout = get_layout(cur, where);
+    if (!layout) {
+        // A damaged zstd layout names no byte: name the layout field's.
+        const std::string& m = layout.error().message;
+        if (m.rfind(where + " byte ", 0) == 0) return std::move(layout).error();
+        return error(layout.error().code, layout_at, m.substr(std::min(m.size(), where.size() + 1)));
+    }
+    std::array<DecodeTable, kTables> tables;
+    std::uint64_t used;
+    const std::size_t used_at = cur.pos();
+    if (!cur.varint(used) || (used >> kTables) != 0) return error(Errc::corrupt, used_at, "bad table set");
+    for (int t = 0; t < kTables; ++t) {
+        const std::size_t at = cur.pos();
+        if (((used >> t) & 1) && !get_table(cur, alphabet(t), tables[static_cast<std::size_t>(t)]))
+            return error(Errc::corrupt, at, "bad table " + std::to_string(t));
+    }
+    std::uint64_t rans_size;
+    const std::size_t size_at = cur.pos();
+    std::string_view rans_bytes;
+    if (!cur.varint(rans_size) || rans_size > cur.left() || !cur.bytes(static_cast<std::size_t>(rans_size), rans_bytes))
+        return error(Errc::corrupt, size_at, "bad rANS stream size");
+    const std::size_t rans_at = cur.pos() - rans_bytes.size();
+    const std::size_t bits_at = cur.pos();
+    DecSide io{&tables, RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
+    TableCoder<DecSide> coder(io, p, axes);
+    coder.grid_ = static_cast<std::int64_t>(h.grid);
+    start_output(out, expand, axes, std::move(*layout));
+    if (window) coder.prime(*window, false);
+    if (items) {
+        *items = SegmentItems{};
+        // As declared, within what the payload's size can plausibly hold.
+        items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, 8 * payload.size())));
+    }
+    // Items the block may add after the window's.
+    const std::uint64_t max_items = coder.hist_.size() + h.nsegments + 2 * h.nchains;
+    auto fail = [&](const char* what) {
+        if (coder.error_) what = coder.error_;
+        if (io.bits.failed) return error(Errc::corrupt, bits_at + io.bits.pos(), std::string(what) + " (extra bits)");
+        return error(Errc::corrupt, rans_at + io.rans.pos(), what);
+    };
+    const bool eight = profile_eight_connected(p);
+    std::uint64_t chains = 0, seen_segments = 0, seen_steps = 0;
+    bool in_chain = false;
+    Chain chain;
+    Point ref{}, pos{};
+    // Takes history entry `e` (a decoded or copied item) into the output.
+    auto take = [&](std::uint32_t e) -> const char* {
+        const std::uint32_t kind = e & ~kIndexMask;
+        if (kind == kStartTag) {
+            if (in_chain) return "chain start inside a chain";
+            if (chains == h.nchains) return "more chains than declared";
+            ++chains;
+            in_chain = true;
+            chain = Chain{};
+            chain.axes = axes;
+            if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
+            pos = chain.start;
+            if (items) {
+                items->starts.push_back(coder.starts_[e & kIndexMask]);
+                items->counts.push_back(0);
+            }
+        } else if (kind == kEndTag) {
+            if (!in_chain) return "chain end outside a chain";
+            in_chain = false;
+            ref = pos;
+            if (expand) out.chains.push_back(std::move(chain));
+        } else {
+            if (!in_chain) return "segment outside a chain";
+            const Segment& seg = *coder.segs_[e & kIndexMask];
+            const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
+            if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
+            ++seen_segments;
+            seen_steps += n;
+            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+            if (expand) expand_segment(p, seg, axes, chain.steps);
+            if (items) {
+                items->segments.push_back(seg);
+                ++items->counts.back();
+            }
+        }
+        return nullptr;
+    };
+    while (in_chain || chains < h.nchains) {
+        const unsigned op = coder.code_op(0);
+        if (io.failed || io.rans.failed) return fail("bad operation");
+        if (op == kOpEnd) {
+            coder.code_end();
+        } else if (op == kOpStart) {
+            Point d{};
+            coder.code_start(Point{}, d);
+        } else if (op < kOpRec) {
+            const SuccList& sl = coder.succ_[coder.prev_shape_ + 1];
+            if (op - kOpSucc >= sl.size) return fail("successor rank beyond the list");
+            coder.take_shape(sl.id[op - kOpSucc], false, 0);
+        } else if (op < kOpFull) {
+            std::size_t r = op - kOpRec;
+            if (op >= kOpRecBucket) {
+                const int k = static_cast<int>((op - kOpRecBucket) / 2) + 3;
+                r = (std::size_t{1} << k) | (std::size_t{(op - kOpRecBucket) & 1} << (k - 1)) |
+                    static_cast<std::size_t>(io.raw(k - 1, 0));
+            }
+            if (r >= coder.recent_.size()) return fail("recent rank beyond the list");
+            coder.take_shape(coder.recent_.at(r), true, r);
+        } else if (op < kOpMatch) {
+            if (!coder.code_full(op, nullptr)) return fail("bad segment");
+        } else {
+            const std::uint64_t len = 1 + bucket_value(op - kOpMatch, [&](int n) { return io.raw(n, 0); });
+            const std::uint64_t off = coder.code_offset(0);
+            if (io.failed || io.rans.failed || io.bits.failed) return fail("bad match");
+            if (off > coder.hist_.size()) return fail("match offset before the window");
+            if (len > max_items - coder.hist_.size()) return fail("match longer than the block");
+            const std::size_t from = coder.hist_.size();
+            coder.copy(off, len);
+            for (std::size_t k = from; k < coder.hist_.size(); ++k)
+                if (const char* e = take(coder.hist_[k])) return fail(e);
+            continue;
+        }
+        if (io.failed || io.rans.failed || io.bits.failed) return fail("bad item");
+        if (coder.hist_.size() > max_items) return fail("more items than declared");
+        if (const char* e = take(coder.hist_.back())) return fail(e);
+    }
+    if (seen_segments != h.nsegments || seen_steps != h.nsteps) return fail("declared segment or step count does not match");
+    if (!io.rans.finished()) return fail("rANS stream does not end at its size");
+    if (!io.bits.finished()) return error(Errc::corrupt, bits_at + io.bits.pos(), "extra bits do not end at the payload's end");
+    counts.chains += h.nchains;
+    counts.segments += h.nsegments;
+    counts.steps += h.nsteps;
+    return {};
+}
+
+}  // namespace stepzip::stz

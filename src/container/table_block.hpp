@@ -1,0 +1,41 @@
+// Table blocks (block type 5, docs/FORMAT.md "Table block"): the segment
+// items of a block (chain starts, segments, chain ends) coded as operations
+// (known shape by successor or recent rank, shape in full, match over
+// earlier items) whose fields are entropy-coded with per-block static
+// tables (rANS) and raw extra bits. The fast levels' encoding: a few table
+// look-ups per field where the segment model (type 3) decides tens of
+// adaptive bits per segment. Internal to src/container.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "block_codec.hpp"
+#include "window.hpp"
+
+namespace stepzip::stz {
+
+/// Encoder effort of a table block (not part of the format).
+struct TableEffort {
+    int recent_search = 64;   ///< recent-list entries searched for a known shape (at most 1024)
+    int min_match = 4;        ///< shortest match taken at a new offset, in items
+    int min_rep_match = 2;    ///< shortest match taken at a repeat offset
+};
+
+/// Payload of a table block for `block` cut into `segs` under `p` (the
+/// segments write_chain_payload takes); with `window`, matches may copy
+/// the window's items (a block flagged kFlagWindow).
+std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
+                              const TableEffort& effort = {}, const WindowView* window = nullptr);
+
+/// Parses a table-block payload into `out` (chains and layout, when
+/// `expand`) and adds its counts to `counts`. Errors: Errc::corrupt and
+/// Errc::limit, each naming the payload byte offset after `where`.
+/// `window`: the block is flagged kFlagWindow; `items`, when not null,
+/// receives the block's segment items (its contribution to the window).
+Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
+                              BlockCounts& counts, const std::string& where, const WindowView* window = nullptr,
+                              SegmentItems* items = nullptr);
+
+}  // namespace stepzip::stz

@@ -1,0 +1,221 @@
+// Static-table entropy coding for the table block (docs/FORMAT.md "Table
+// block"): per-block frequency tables, two interleaved rANS states with
+// 16-bit renormalization, and a raw bit stream for the extra bits of
+// bucketed values. Decoding a symbol is one table look-up, a multiply and
+// at most one 16-bit read. Internal to src/container.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stepzip::stz::table {
+
+inline constexpr std::uint32_t kRansLow = 1u << 16;  // state lies in [kRansLow, 2^32)
+inline constexpr int kMaxPrecision = 12;             // table sizes 2^1 .. 2^12
+
+/// One table as the payload describes it: the symbols used, with their
+/// frequencies summing to 2^precision.
+struct FreqTable {
+    int precision = 0;  ///< 0: table unused
+    std::vector<std::uint16_t> symbol;
+    std::vector<std::uint32_t> freq;
+};
+
+/// Decoder entry of one slot: the symbol, its frequency and its first slot.
+struct Slot {
+    std::uint16_t symbol, freq, start;
+};
+
+/// The decoding table of a FreqTable (2^precision slots).
+struct DecodeTable {
+    int precision = 0;
+    std::vector<Slot> slots;
+};
+
+/// Encoder entry: per symbol, its frequency (0: absent) and first slot.
+struct EncodeTable {
+    int precision = 0;
+    std::vector<std::uint32_t> freq, start;
+};
+
+/// rANS encoder over a sequence given forward: symbols are recorded, then
+/// encoded backward on finish() (symbol i uses state i & 1).
+class RansEncoder {
+public:
+    void put(const EncodeTable& t, unsigned sym) {
+        ops_.push_back({&t, sym});
+    }
+    /// The stream: two u32 states (little-endian), then 16-bit words
+    /// (little-endian) in the order the decoder reads them.
+    std::string finish() {
+        std::uint64_t x[2] = {kRansLow, kRansLow};
+        std::vector<std::uint16_t> words;
+        for (std::size_t i = ops_.size(); i-- > 0;) {
+            const EncodeTable& t = *ops_[i].table;
+            const std::uint64_t f = t.freq[ops_[i].sym];
+            std::uint64_t& s = x[i & 1];
+            const std::uint64_t xmax = ((std::uint64_t{kRansLow} >> t.precision) << 16) * f;
+            if (s >= xmax) {
+                words.push_back(static_cast<std::uint16_t>(s & 0xFFFF));
+                s >>= 16;
+            }
+            s = ((s / f) << t.precision) + (s % f) + t.start[ops_[i].sym];
+        }
+        std::string out;
+        out.reserve(8 + 2 * words.size());
+        for (int k = 0; k < 2; ++k)
+            for (int b = 0; b < 4; ++b) out.push_back(static_cast<char>((x[k] >> (8 * b)) & 0xFF));
+        for (std::size_t i = words.size(); i-- > 0;) {
+            out.push_back(static_cast<char>(words[i] & 0xFF));
+            out.push_back(static_cast<char>(words[i] >> 8));
+        }
+        ops_.clear();
+        return out;
+    }
+
+private:
+    struct Op {
+        const EncodeTable* table;
+        unsigned sym;
+    };
+    std::vector<Op> ops_;
+};
+
+/// rANS decoder. Reading past the stream sets `failed` (words read as 0).
+class RansDecoder {
+public:
+    explicit RansDecoder(std::string_view s) : p_(reinterpret_cast<const unsigned char*>(s.data())),
+                                               end_(p_ + s.size()), begin_(p_) {
+        if (s.size() < 8) {
+            failed = true;
+            p_ = end_;
+            return;
+        }
+        for (int k = 0; k < 2; ++k) {
+            std::uint32_t v;
+            std::memcpy(&v, p_, 4);
+            x_[k] = v;  // little-endian hosts only (as the rest of the library)
+            p_ += 4;
+        }
+        if (x_[0] < kRansLow || x_[1] < kRansLow) failed = true;
+    }
+    unsigned get(const DecodeTable& t) {
+        std::uint32_t& x = x_[which_];
+        which_ ^= 1;
+        const std::uint32_t mask = (1u << t.precision) - 1;
+        const std::uint32_t slot = x & mask;
+        const Slot e = t.slots[slot];
+        x = e.freq * (x >> t.precision) + slot - e.start;
+        if (x < kRansLow) {
+            if (end_ - p_ >= 2) {
+                x = (x << 16) | p_[0] | (std::uint32_t{p_[1]} << 8);
+                p_ += 2;
+            } else {
+                failed = true;
+                x = kRansLow;
+            }
+        }
+        return e.symbol;
+    }
+    /// Stream offset of the next word.
+    std::size_t pos() const { return static_cast<std::size_t>(p_ - begin_); }
+    /// Every word read and both states back at their initial value.
+    bool finished() const { return !failed && p_ == end_ && x_[0] == kRansLow && x_[1] == kRansLow; }
+    bool failed = false;
+
+private:
+    const unsigned char* p_;
+    const unsigned char* end_;
+    const unsigned char* begin_;
+    std::uint32_t x_[2] = {kRansLow, kRansLow};
+    unsigned which_ = 0;
+};
+
+/// Raw bits, low bit first within each byte, written forward.
+class BitWriter {
+public:
+    void put(std::uint64_t v, int n) {
+        if (n > 32) {
+            put(v & 0xFFFFFFFFu, 32);
+            put(v >> 32, n - 32);
+            return;
+        }
+        acc_ |= (v & ((std::uint64_t{1} << n) - 1)) << fill_;
+        fill_ += n;
+        while (fill_ >= 8) {
+            out_.push_back(static_cast<char>(acc_ & 0xFF));
+            acc_ >>= 8;
+            fill_ -= 8;
+        }
+    }
+    std::string finish() {
+        if (fill_ > 0) out_.push_back(static_cast<char>(acc_ & 0xFF));
+        acc_ = 0;
+        fill_ = 0;
+        return std::move(out_);
+    }
+
+private:
+    std::string out_;
+    std::uint64_t acc_ = 0;
+    int fill_ = 0;
+};
+
+/// Reads what BitWriter wrote; reading past the end sets `failed`.
+class BitReader {
+public:
+    explicit BitReader(std::string_view s) : p_(reinterpret_cast<const unsigned char*>(s.data())),
+                                             end_(p_ + s.size()), begin_(p_) {}
+    std::uint64_t get(int n) {
+        if (n > 32) {
+            const std::uint64_t lo = get(32);
+            return lo | (get(n - 32) << 32);
+        }
+        while (fill_ < n) {
+            if (p_ == end_) {
+                failed = true;
+                return 0;
+            }
+            acc_ |= std::uint64_t{*p_++} << fill_;
+            fill_ += 8;
+        }
+        const std::uint64_t v = acc_ & ((std::uint64_t{1} << n) - 1);
+        acc_ >>= n;
+        fill_ -= n;
+        return v;
+    }
+    std::size_t pos() const { return static_cast<std::size_t>(p_ - begin_); }
+    /// Every byte read and the unread bits of the last one zero.
+    bool finished() const { return !failed && p_ == end_ && acc_ == 0; }
+    bool failed = false;
+
+private:
+    const unsigned char* p_;
+    const unsigned char* end_;
+    const unsigned char* begin_;
+    std::uint64_t acc_ = 0;
+    int fill_ = 0;
+};
+
+/// Bucket of an unsigned value: v < 8 is its own symbol; above, the
+/// symbol 8 + 2 (k - 3) + m names the bit length k + 1 and the bit m below
+/// the top bit, and k - 1 extra bits follow.
+inline unsigned bucket_of(std::uint64_t v, int& nbits, std::uint64_t& extra) {
+    if (v < 8) {
+        nbits = 0;
+        extra = 0;
+        return static_cast<unsigned>(v);
+    }
+    const int k = std::bit_width(v) - 1;
+    nbits = k - 1;
+    extra = v & ((std::uint64_t{1} << (k - 1)) - 1);
+    return 8 + 2 * static_cast<unsigned>(k - 3) + static_cast<unsigned>((v >> (k - 1)) & 1);
+}
+/// Symbols of bucket_of for 64-bit values.
+inline constexpr unsigned kBuckets = 8 + 2 * 61;
+
+}  // namespace stepzip::stz::table

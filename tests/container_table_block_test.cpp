@@ -1,0 +1,192 @@
+// Table blocks (block type 5, docs/FORMAT.md section 1.10): round trips of
+// corpus blocks on two and four axes, with and without the window; the
+// pinned bytes of a small payload; and the decoder's answer to damaged
+// payloads (an error naming a payload byte, never a crash or a wrong block).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../src/container/block_codec.hpp"
+#include "../src/container/table_block.hpp"
+#include "../src/container/window.hpp"
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+#include "stepzip/segmenter.hpp"
+#include "support/pinned_bytes.hpp"
+
+namespace stepzip::stz {
+namespace {
+
+using Cut = std::vector<std::vector<Segment>>;
+using test::corpus_block;
+using test::hex;
+using test::unhex;
+
+Block text_block(InputFormat f, const std::string& text) { return test::block_of(f, text); }
+
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+Cut greedy_cut(const Block& b, Profile p) {
+    Cut segs(b.chains.size());
+    for (std::size_t i = 0; i < b.chains.size(); ++i)
+        EXPECT_TRUE(segment_steps(b.chains[i].steps, b.axes, p, SegmenterKind::greedy, segs[i]).ok());
+    return segs;
+}
+
+// Decodes `payload` and checks it gives `b` back, with the counts.
+void expect_decodes_to(const std::string& payload, const Block& b, Profile p, const Cut& segs,
+                       const WindowView* window = nullptr) {
+    Block out;
+    BlockCounts counts;
+    SegmentItems items;
+    auto r = read_table_block(payload, p, b.axes, true, out, counts, "test", window, &items);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    EXPECT_EQ(out.chains, b.chains);
+    EXPECT_EQ(out.layout, b.layout);
+    std::uint64_t nsegs = 0, steps = 0;
+    for (const auto& v : segs) nsegs += v.size();
+    for (const Chain& c : b.chains) steps += c.steps.size();
+    EXPECT_EQ(counts.chains, b.chains.size());
+    EXPECT_EQ(counts.segments, nsegs);
+    EXPECT_EQ(counts.steps, steps);
+    // The block's contribution to the window: its own items.
+    EXPECT_EQ(items.starts, start_deltas(b));
+    EXPECT_EQ(items.segments.size(), nsegs);
+}
+
+TEST(ContainerTable, CorpusBlocksRoundTripUnderEveryProfileAndEffort) {
+    const Block plot = corpus_block("plotter/hershey-grbl.fc", 40000);
+    const Block glyphs = corpus_block("glyphs/dejavu-4.fc", 40000);
+    for (Profile p : {Profile::eval8, Profile::grbl, Profile::marlin}) {
+        const Cut segs = greedy_cut(plot, p);
+        for (int search : {0, 16, 1024}) {
+            TableEffort e;
+            e.recent_search = search;
+            SCOPED_TRACE(std::string(profile_name(p)) + " search " + std::to_string(search));
+            expect_decodes_to(write_table_block(plot, p, segs, e), plot, p, segs);
+        }
+    }
+    for (Profile p : {Profile::eval4, Profile::patent}) {
+        const Cut segs = greedy_cut(glyphs, p);
+        SCOPED_TRACE(profile_name(p));
+        expect_decodes_to(write_table_block(glyphs, p, segs), glyphs, p, segs);
+    }
+}
+
+TEST(ContainerTable, FourAxesRoundTrip) {
+    const std::string text = slurp(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / "stepper" /
+                                   "engrave-4axis.steps");
+    const Block b = text_block(InputFormat::steps, text);
+    ASSERT_EQ(b.axes, 4);
+    const Cut segs = greedy_cut(b, Profile::grbl);
+    expect_decodes_to(write_table_block(b, Profile::grbl, segs), b, Profile::grbl, segs);
+}
+
+TEST(ContainerTable, MatchesReachIntoTheWindow) {
+    // The same strokes in two blocks: from the window, the second block is
+    // a few matches, far smaller than on its own.
+    const Block first = corpus_block("plotter/hershey-eval8.fc", 30000);
+    const Cut segs = greedy_cut(first, Profile::eval8);
+    auto w = std::make_shared<WindowBlock>();
+    w->items = segment_items(first, segs);
+    const WindowView window{w};
+    const std::string alone = write_table_block(first, Profile::eval8, segs);
+    const std::string windowed = write_table_block(first, Profile::eval8, segs, {}, &window);
+    EXPECT_LT(windowed.size() * 10, alone.size());
+    expect_decodes_to(windowed, first, Profile::eval8, segs, &window);
+    // Without its window the payload does not decode to the block.
+    Block out;
+    BlockCounts counts;
+    auto r = read_table_block(windowed, Profile::eval8, 2, true, out, counts, "test");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::corrupt);
+}
+
+// Two chains, eval8, greedy cut (as tests/container_format_bytes_test.cpp).
+constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
+// Printed by this encoder and checked to decode to kTwoChains (below): the
+// counts (2 chains, 4 segments, 33 steps), grid 1, empty layout (00 00),
+// the table set, the tables, the rANS size and stream, the extra bits.
+constexpr const char* kPinned =
+    "02 04 21 02 00 00 a9 92 86 e8 80 98 30 01 01 1c 00 01 00 02 02 00 01 1b 00 06 00 00 01 00 09 00 08 00 02 00 "
+    "02 00 01 00 04 00 06 00 09 00 0a 01 01 00 00 08 00 01 01 00 00 04 00 08 3a 00 40 00 18 00 40 00 2b 01";
+
+TEST(ContainerTable, PinnedPayload) {
+    const Block b = text_block(InputFormat::freeman, kTwoChains);
+    const Cut segs = greedy_cut(b, Profile::eval8);
+    EXPECT_EQ(hex(write_table_block(b, Profile::eval8, segs)), kPinned);
+    expect_decodes_to(unhex(kPinned), b, Profile::eval8, segs);
+}
+
+TEST(ContainerTable, PinnedCorpusPayload) {
+    const Block b = corpus_block("plotter/hershey-grbl.fc", 20000);
+    const std::string payload = write_table_block(b, Profile::grbl, greedy_cut(b, Profile::grbl));
+    EXPECT_EQ(payload.size(), 1942u);
+    EXPECT_EQ(hash64(payload), 7601009642522582474u);
+}
+
+// Every truncation and every single-byte change of a payload: an error
+// naming a payload byte (corrupt or limit), or a block that decodes in full.
+TEST(ContainerTable, DamagedPayloadsFailWithAnOffset) {
+    const Block b = corpus_block("plotter/hershey-eval8.fc", 3000);
+    const std::string good = write_table_block(b, Profile::eval8, greedy_cut(b, Profile::eval8));
+    auto check = [&](const std::string& bad, const std::string& what) {
+        Block out;
+        BlockCounts counts;
+        auto r = read_table_block(bad, Profile::eval8, 2, true, out, counts, "blk");
+        if (r.ok()) return;
+        EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << what;
+        EXPECT_NE(r.error().message.find("blk byte "), std::string::npos) << what << ": " << r.error().message;
+    };
+    for (std::size_t n = 0; n < good.size(); ++n) {
+        Block out;
+        BlockCounts counts;
+        auto r = read_table_block(good.substr(0, n), Profile::eval8, 2, true, out, counts, "blk");
+        ASSERT_FALSE(r.ok()) << "cut at " << n;
+        check(good.substr(0, n), "cut at " + std::to_string(n));
+    }
+    for (std::size_t i = 0; i < good.size(); ++i)
+        for (int x : {0x01, 0x80, 0xFF}) {
+            std::string bad = good;
+            bad[i] = static_cast<char>(bad[i] ^ x);
+            check(bad, "byte " + std::to_string(i) + " ^ " + std::to_string(x));
+        }
+}
+
+TEST(ContainerTable, SpecificErrorsNameTheirByte) {
+    const Block b = text_block(InputFormat::freeman, kTwoChains);
+    const std::string good = unhex(kPinned);
+    auto error_of = [&](const std::string& bad) {
+        Block out;
+        BlockCounts counts;
+        auto r = read_table_block(bad, Profile::eval8, 2, true, out, counts, "blk");
+        EXPECT_FALSE(r.ok());
+        return r.ok() ? std::string() : r.error().message;
+    };
+    // The table set at payload byte 6 (after 4 counts and 2 layout bytes):
+    // a bit above table 49.
+    std::string bad = good.substr(0, 6) + "\x80\x80\x80\x80\x80\x80\x80\x04" + good.substr(9);
+    EXPECT_EQ(error_of(bad), "blk byte 6: bad table set");
+    // More chains than the limit: `limit` at byte 0.
+    Block out;
+    BlockCounts counts;
+    auto r = read_table_block(std::string("\x81\x80\x80\x01", 4) + good.substr(1), Profile::eval8, 2, true, out,
+                              counts, "blk");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::limit);
+    // One more byte after the extra bits.
+    EXPECT_NE(error_of(good + '\0').find("extra bits do not end"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stepzip::stz
