@@ -22,6 +22,7 @@
 #include "mix.hpp"
 #include "modeled_block.hpp"
 #include "mtf_list.hpp"
+#include "segment_fields.hpp"
 #include "range_coder.hpp"
 #include "timed_phase.hpp"
 
@@ -625,18 +626,16 @@ private:
         for (int i = 0; i < axes_; ++i) {
             std::int64_t v = l;
             if (i != lead) {
-                const std::int64_t pred = std::min(l, (l * prev_s_[j] + prev_l_ / 2) / prev_l_);
+                const std::int64_t pred = predict_minor(l, prev_s_[j], prev_l_);
                 io_.field(6);
-        const std::int64_t d = code_sint(io_, ctx_->minor[bl], Io::kDecode ? 0 : std::llabs(want->delta[i]) - pred);
+                const std::int64_t d =
+                    code_sint(io_, ctx_->minor[bl], Io::kDecode ? 0 : std::llabs(want->delta[i]) - pred);
                 if (io_.failed) return fail("bad minor total");
                 v = pred + d;
-                if (v < 0 || v > l || (i < lead && v == l)) return fail("minor total out of range");
+                if (!minor_in_range(v, l, i, lead)) return fail("minor total out of range");
                 ++j;
             }
-            if ((neg >> i) & 1u) {
-                if (v == 0) return fail("sign on a resting axis");
-                v = -v;
-            }
+            if (!apply_sign(v, neg, i)) return fail("sign on a resting axis");
             seg.delta[i] = v;
         }
         for (int k = 0; k < phase_count(p_, axes_); ++k) {

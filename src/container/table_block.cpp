@@ -17,6 +17,7 @@
 #include "../common/bytes.hpp"
 #include "modeled_block.hpp"
 #include "mtf_list.hpp"
+#include "segment_fields.hpp"
 #include "stepzip/interpolate/segment.hpp"
 #include "table_rans.hpp"
 
@@ -339,18 +340,15 @@ public:
         for (int i = 0; i < axes_; ++i) {
             std::int64_t v = l;
             if (i != lead) {
-                const std::int64_t pred = std::min(l, (l * prev_s_[static_cast<std::size_t>(j)] + prev_l_ / 2) / prev_l_);
+                const std::int64_t pred = predict_minor(l, prev_s_[static_cast<std::size_t>(j)], prev_l_);
                 const std::uint64_t z =
                     code_uint(kTMinor + bl, Io::kDecode ? 0 : zig(std::llabs(want->delta[i]) - pred));
                 if (io_.failed || z > (std::uint64_t{1} << 32)) return fail("bad minor total");
                 v = pred + unzig(z);
-                if (v < 0 || v > l || (i < lead && v == l)) return fail("minor total out of range");
+                if (!minor_in_range(v, l, i, lead)) return fail("minor total out of range");
                 ++j;
             }
-            if ((neg >> i) & 1u) {
-                if (v == 0) return fail("sign on a resting axis");
-                v = -v;
-            }
+            if (!apply_sign(v, neg, i)) return fail("sign on a resting axis");
             seg.delta[i] = v;
         }
         for (int k = 0; k < phases_; ++k) {
