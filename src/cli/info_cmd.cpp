@@ -45,9 +45,11 @@ int cmd_info(const std::vector<std::string>& args) {
         std::printf("input format:    %s\n", std::string(format_name(info->format)).c_str());
         std::printf("axes:            %d\n", info->axes);
         std::printf("segmenter:       %s\n", std::string(segmenter_name(info->segmenter)).c_str());
-        std::printf("blocks:          %llu (raw: %llu, segment model: %llu, step model: %llu, table: %llu)\n",
+        std::printf("blocks:          %llu (raw: %llu, segment model: %llu, step model: %llu, table: %llu",
                     u(info->blocks), u(info->raw_blocks), u(info->segment_model_blocks),
                     u(info->step_model_blocks), u(info->table_blocks));
+        if (info->timed_blocks != 0) std::printf(", timed: %llu", u(info->timed_blocks));
+        std::printf(")\n");
         std::printf("chains:          %llu\n", u(info->chains));
         std::printf("steps:           %llu\n", u(info->steps));
         std::printf("segments:        %llu\n", u(info->segments));

@@ -44,8 +44,10 @@ struct CostEncIo : EncIo {
 };
 
 /// Bits spent on each field by the segment model of `block` cut into `segs`
-/// (no window).
+/// (no window); `timed`: 1 as in a timed frame's block type 3, 2 as in a
+/// timed block (type 7 subtype 0; `segs` aligned for it).
 std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, Profile p,
-                                                            const std::vector<std::vector<Segment>>& segs);
+                                                            const std::vector<std::vector<Segment>>& segs,
+                                                            int timed = 0);
 
 }  // namespace stepzip::stz

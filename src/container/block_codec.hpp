@@ -31,7 +31,9 @@ inline constexpr std::uint64_t kMaxMetadata = 4096;
 /// Metadata record tags.
 inline constexpr std::uint64_t kMetaPatentStats = 1;
 
-enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4, kTable = 5, kMixedModel = 6 };
+enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4, kTable = 5, kMixedModel = 6,
+                        kExtended = 7 };
+/// Block type 7 (the extended block): the payload's first byte is a subtype.
 /// Block type 6 (mixed predictions): the payload's first byte, the model.
 inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1;
 /// Block flags (version 1: the flags byte; version 2: bits 3.. of the block byte).

@@ -8,6 +8,7 @@
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
 #include "table_block.hpp"
+#include "timed_block.hpp"
 #include "timed_phase.hpp"
 
 namespace stepzip::stz {
@@ -100,6 +101,33 @@ std::string smallest_segment_model(const Block& block, Profile p, std::vector<Cu
         }
     }
     return best;
+}
+
+// Timed frames: the timed block (type 7 subtype 0) of each cut, taken when
+// smaller than `best` (of type `type`). At the strong levels, where the
+// mixed pass codes the chosen model again with mixed predictions once the
+// window has been noted (and the phases of the cut can no longer change),
+// the two are compared with mixed predictions (no window) instead.
+void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut>& cuts, unsigned& type,
+                  std::string& best) {
+    const bool strong = s.level >= kStrongLevel;
+    std::size_t bar = best.empty() ? SIZE_MAX : best.size();
+    if (strong && type == kSegmentModel)
+        bar = write_segment_model(job.block, s.profile, job.cut, nullptr, true, true).size();
+    for (const Cut& cut : cuts) {
+        Cut aligned = cut;
+        const std::string timed = write_timed_block(job.block, s.profile, aligned);
+        if (timed.empty() || timed.size() > kMaxBlockPayload) continue;
+        std::string rec = make_stored_record(kExtended, job.flags, timed);
+        const std::size_t size =
+            strong && type == kSegmentModel ? write_timed_block(job.block, s.profile, aligned, nullptr, true).size()
+                                            : rec.size();
+        if (size >= bar) continue;
+        bar = size;
+        best = std::move(rec);
+        type = kExtended;
+        job.cut = std::move(aligned);
+    }
 }
 
 // Encoded size of a block under `p` (for --profile auto at the thorough
@@ -268,7 +296,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
             if (model.size() <= kMaxBlockPayload &&
                 consider(kSegmentModel, make_stored_record(kSegmentModel, job.flags, model)))
-                job.cut = std::move(cuts[which]);
+                job.cut = cuts[which];
+            if (s.timed) timed_choice(job, s, cuts, type, best);
         }
     } else if (s.profile_named && block.axes == s.axes) {
         for (std::size_t c = 0; c < block.chains.size(); ++c) {
@@ -314,7 +343,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     }
     job.type = type;
     job.record = std::move(best);
-    if (type != kSegmentModel && type != kTable) job.cut.clear();
+    if (type != kSegmentModel && type != kTable && type != kExtended) job.cut.clear();
     if (type == kRaw) job.stats = {};
     if (s.window_log != 0) {
         auto w = std::make_shared<WindowBlock>();
@@ -360,7 +389,7 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
 }
 
 void note_items(BlockJob& job) {
-    if (job.contribution && (job.type == kSegmentModel || job.type == kTable))
+    if (job.contribution && (job.type == kSegmentModel || job.type == kTable || job.type == kExtended))
         job.contribution->items = segment_items(job.block, job.cut);
 }
 
@@ -372,17 +401,23 @@ namespace {
 // and on data the mixer cannot predict (random walks: about 1% smaller) it
 // is not worth that. The block's type (job.type) stays the model's.
 void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel)) return;
+    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel && job.type != kExtended))
+        return;
     const unsigned flags = view_record(job.record).flags;
     const WindowView* w = (flags & kFlagWindow) ? &window : nullptr;
     const std::size_t plain = job.record.size();
-    auto keep = [&](const std::string& model) {
+    auto keep = [&](const std::string& model, unsigned type = kMixedModel) {
         if (model.empty() || model.size() > kMaxBlockPayload) return;
-        std::string rec = make_stored_record(kMixedModel, flags, model);
+        std::string rec = make_stored_record(type, flags, model);
         if (rec.size() * 64 <= plain * 63 && rec.size() < job.record.size()) job.record = std::move(rec);
     };
     if (job.type == kSegmentModel) {
         keep(write_segment_model(job.block, s.profile, job.cut, w, s.timed, true));
+        return;
+    }
+    if (job.type == kExtended) {  // the cut's phases are aligned for it already
+        Cut cut = job.cut;
+        keep(write_timed_block(job.block, s.profile, cut, w, true), kExtended);
         return;
     }
     // The hashed models see the long contexts: a short primary order wins
@@ -403,6 +438,14 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
         const std::string table = write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window);
         if (table.size() > kMaxBlockPayload) return;
         std::string rec = make_stored_record(kTable, job.flags | kFlagWindow, table);
+        if (rec.size() < job.record.size()) job.record = std::move(rec);
+        return;
+    }
+    if (job.type == kExtended) {
+        Cut cut = job.cut;
+        const std::string timed = write_timed_block(job.block, s.profile, cut, &window);
+        if (timed.empty() || timed.size() > kMaxBlockPayload) return;
+        std::string rec = make_stored_record(kExtended, job.flags | kFlagWindow, timed);
         if (rec.size() < job.record.size()) job.record = std::move(rec);
         return;
     }

@@ -170,6 +170,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             if (j.type == kSegmentModel) ++info.segment_model_blocks;
             if (j.type == kStepModel) ++info.step_model_blocks;
             if (j.type == kTable) ++info.table_blocks;
+            if (j.type == kExtended) ++info.timed_blocks;
             info.chains += j.counts.chains;
             if (j.block.continues && chain_open && j.counts.chains > 0) --info.chains;
             chain_open = j.block.open;

@@ -16,6 +16,7 @@
 #include "../common/bytes.hpp"
 #include "memory_io.hpp"
 #include "table_block.hpp"
+#include "timed_block.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"
 
@@ -186,7 +187,7 @@ private:
         } else {
             b.type = first & 7u;
             b.flags = first >> 3;
-            if (b.type == kEnd || b.type > kMixedModel)
+            if (b.type == kEnd || b.type > kExtended)
                 return make_error(Errc::corrupt, at(block_at) + ": unknown block type " + std::to_string(b.type));
             if ((b.flags & ~7u) != 0)
                 return make_error(Errc::reserved_bits, at(block_at) + ": reserved block flags are set");
@@ -209,7 +210,8 @@ private:
             // the one block byte in version 2.
             return make_error(Errc::limit, at(block_at + (hdr_.version == 1 ? 2 : 1)) +
                                                ": block sizes exceed the decoder limits");
-        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kTable || b.type == kMixedModel;
+        const bool stored = b.type == kSegmentModel || b.type == kStepModel || b.type == kTable || b.type == kMixedModel ||
+                            b.type == kExtended;
         if (stored && b.dsize != b.csize)
             return make_error(Errc::corrupt, at(block_at + 6) +
                                                  ": decoded size of a modeled block differs from its size");
@@ -269,6 +271,11 @@ private:
                 Result<void> r;
                 // Block type 6 decodes as the model its first byte names.
                 const bool mixed = b.type == kMixedModel;
+                // Block type 7 decodes as the subtype its first byte names.
+                if (b.type == kExtended && (payload.empty() || static_cast<unsigned char>(payload[0]) != kTimedSubtype))
+                    return make_error(Errc::corrupt, what + " byte 0: unknown subtype of an extended block");
+                if (b.type == kExtended && hdr_.format != InputFormat::timed)
+                    return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");
                 const unsigned model = !mixed ? b.type
                                        : payload.empty() ? kEnd
                                        : static_cast<unsigned char>(payload[0]) == kMixedSegment ? kSegmentModel
@@ -284,6 +291,9 @@ private:
                     r = read_segment_model(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed, mixed);
+                } else if (model == kExtended) {
+                    r = read_timed_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
+                                         window_.limit() ? &contribution->items : nullptr);
                 } else if (model == kTable) {
                     r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                          window_.limit() ? &contribution->items : nullptr);
@@ -296,6 +306,7 @@ private:
                 if (model == kSegmentModel) ++info_.segment_model_blocks;
                 if (model == kStepModel) ++info_.step_model_blocks;
                 if (model == kTable) ++info_.table_blocks;
+                if (model == kExtended) ++info_.timed_blocks;
                 info_.segments += counts.segments;
                 info_.steps += counts.steps;
                 info_.chains += counts.chains;

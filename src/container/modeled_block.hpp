@@ -20,9 +20,12 @@ namespace stepzip::stz {
 /// `timed`: the frame's input format is timed (phases predicted, FORMAT.md).
 /// `mixed`: the payload of a block type 6 instead (model byte 0, then the
 /// same fields, coded with mixed predictions; docs/FORMAT.md 1.11).
+/// `rates`: the payload of a timed block (block type 7, subtype byte 0 first;
+/// phases predicted by TimedRates; docs/FORMAT.md "Timed block").
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
-                                const WindowView* window = nullptr, bool timed = false, bool mixed = false);
+                                const WindowView* window = nullptr, bool timed = false, bool mixed = false,
+                                bool rates = false);
 
 /// Payload of a step-model block (block type 4); empty when the block is not
 /// two-axis (the step model codes Freeman directions only). `order` 1..4
@@ -44,7 +47,7 @@ std::string write_mixed_step_model(const Block& block, int order, const WindowVi
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
                                 const WindowView* window = nullptr, SegmentItems* items = nullptr,
-                                bool timed = false, bool mixed = false);
+                                bool timed = false, bool mixed = false, bool rates = false);
 /// The decoder's step-model history of a frame with a window: the symbols of
 /// every block, from the window's start on, and the match table over them.
 /// A block flagged `window` decodes on it (O(1) per symbol) instead of

@@ -6,6 +6,7 @@
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "table_block.hpp"
+#include "timed_block.hpp"
 
 namespace stepzip::stz {
 
@@ -37,6 +38,8 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
         : rec.type == kTable
             ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
+        : rec.type == kExtended
+            ? read_timed_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
         : job.type == kSegmentModel
             ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
                                  s.timed, mixed)

@@ -24,6 +24,7 @@
 #include "mtf_list.hpp"
 #include "segment_fields.hpp"
 #include "range_coder.hpp"
+#include "timed_block.hpp"
 #include "timed_phase.hpp"
 
 namespace stepzip::stz {
@@ -228,7 +229,7 @@ private:
 template <class Io>
 class SegmentCoder {
 public:
-    SegmentCoder(Io& io, Profile p, int axes, bool timed = false)
+    SegmentCoder(Io& io, Profile p, int axes, TimedPrediction timed = TimedPrediction::none)
         : io_(io), p_(p), axes_(axes), timed_(timed), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
         succ_.resize(1);  // succ_[0]: after no segment
         if constexpr (kMixedIo<Io>) {
@@ -271,6 +272,7 @@ public:
     Point start(const Point& want) {
         const std::uint32_t pred = predicted(kStart);
         tphase_.reset();
+        rates_.reset();
         from_start_ = Point{};
         if constexpr (kMixedIo<Io>) item_contexts(kStart, pred, 0);
         bool hit = false;
@@ -510,7 +512,8 @@ private:
     }
 
     void note_segment(const Segment& seg) {
-        if (timed_) tphase_.advance(p_, seg, axes_);
+        if (timed_ == TimedPrediction::since) tphase_.advance(p_, seg, axes_);
+        if (timed_ == TimedPrediction::rates) rates_.advance(p_, seg, axes_);
         const int lead = leading_axis(seg.delta, axes_);
         if (axes_ == 2) {
             unsigned neg = 0;
@@ -641,7 +644,9 @@ private:
         for (int k = 0; k < phase_count(p_, axes_); ++k) {
             const auto ab = *phase_arguments(p_, seg, axes_, k);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
-            const std::int64_t def = timed_ ? tphase_.predict(p_, seg, axes_, k) : default_phase(p_, ab.first, ab.second);
+            const std::int64_t def = timed_ == TimedPrediction::since ? tphase_.predict(p_, seg, axes_, k)
+                                     : timed_ == TimedPrediction::rates ? rates_.predict(p_, seg, axes_, k)
+                                                                        : default_phase(p_, ab.first, ab.second);
             if (r.hi - r.lo == 1) {
                 seg.phase[k] = r.lo;
                 continue;
@@ -657,8 +662,9 @@ private:
     Io& io_;
     Profile p_;
     int axes_;
-    bool timed_;           // phases predicted from the time since each axis moved
+    TimedPrediction timed_;  // timed frames: phases predicted (FORMAT.md 1.5.1, timed block)
     TimedPhase tphase_;
+    TimedRates rates_;
     std::unique_ptr<Contexts> ctx_;
     FlatMap table_;  // context (two history entries) -> next position
     std::vector<std::uint32_t> hist_;
@@ -747,7 +753,7 @@ namespace {
 template <class Io>
 std::string segment_model_with(Io& io, const Block& block, Profile p,
                                const std::vector<std::vector<Segment>>& segs, const WindowView* window,
-                               bool timed) {
+                               TimedPrediction timed) {
     Counts c;
     c.nchains = block.chains.size();
     for (std::size_t i = 0; i < segs.size(); ++i)
@@ -756,7 +762,12 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
             c.nsteps += static_cast<std::uint64_t>(steps_of(p, s, block.axes));
         }
     std::string out;
-    if constexpr (kMixedIo<Io>) put_u8(out, kMixedSegment);
+    if (timed == TimedPrediction::rates) {  // block type 7: subtype, coding
+        put_u8(out, kTimedSubtype);
+        put_u8(out, kMixedIo<Io> ? kTimedMixed : kTimedPlain);
+    } else if constexpr (kMixedIo<Io>) {
+        put_u8(out, kMixedSegment);
+    }
     put_varint(out, c.nchains);
     put_varint(out, c.nsegments);
     put_varint(out, c.nsteps);
@@ -805,19 +816,21 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
 
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs, const WindowView* window,
-                                bool timed, bool mixed) {
+                                bool timed, bool mixed, bool rates) {
+    const TimedPrediction t = rates ? TimedPrediction::rates : timed ? TimedPrediction::since : TimedPrediction::none;
     if (mixed) {
         MixEncIo io;
-        return segment_model_with(io, block, p, segs, window, timed);
+        return segment_model_with(io, block, p, segs, window, t);
     }
     EncIo io;
-    return segment_model_with(io, block, p, segs, window, timed);
+    return segment_model_with(io, block, p, segs, window, t);
 }
 
 std::array<double, kSegmentModelFields> segment_model_costs(const Block& block, Profile p,
-                                                            const std::vector<std::vector<Segment>>& segs) {
+                                                            const std::vector<std::vector<Segment>>& segs,
+                                                            int timed) {
     CostEncIo io;
-    segment_model_with(io, block, p, segs, nullptr, false);
+    segment_model_with(io, block, p, segs, nullptr, static_cast<TimedPrediction>(timed));
     std::array<double, kSegmentModelFields> out{};
     std::copy_n(io.cost, kSegmentModelFields, out.begin());
     return out;
@@ -828,10 +841,18 @@ namespace {
 template <class Io>
 Result<void> read_segment_model_with(std::string_view payload, Profile p, int axes, bool expand,
                                      Block& out, BlockCounts& counts, const std::string& where,
-                                     const WindowView* window, SegmentItems* items, bool timed) {
+                                     const WindowView* window, SegmentItems* items, TimedPrediction timed) {
     Cursor cur(payload);
     Counts c;
-    if constexpr (kMixedIo<Io>) {
+    if (timed == TimedPrediction::rates) {
+        unsigned subtype, coding;
+        if (!cur.u8(subtype) || subtype != kTimedSubtype)
+            return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
+        if (p != Profile::eval8 && p != Profile::grbl && p != Profile::marlin)
+            return make_error(Errc::corrupt, where + " byte 0: a timed block under a 4-connected profile");
+        if (!cur.u8(coding) || coding != (kMixedIo<Io> ? kTimedMixed : kTimedPlain))
+            return make_error(Errc::corrupt, where + " byte 1: unknown coding of a timed block");
+    } else if constexpr (kMixedIo<Io>) {
         unsigned kind;
         if (!cur.u8(kind) || kind != kMixedSegment)
             return make_error(Errc::corrupt, where + " byte 0: not a mixed segment model");
@@ -902,10 +923,14 @@ Result<void> read_segment_model_with(std::string_view payload, Profile p, int ax
 
 Result<void> read_segment_model(std::string_view payload, Profile p, int axes, bool expand,
                                 Block& out, BlockCounts& counts, const std::string& where,
-                                const WindowView* window, SegmentItems* items, bool timed, bool mixed) {
+                                const WindowView* window, SegmentItems* items, bool timed, bool mixed, bool rates) {
+    const TimedPrediction t = rates ? TimedPrediction::rates : timed ? TimedPrediction::since : TimedPrediction::none;
+    // A timed block names its coding in its second byte (an unknown one is
+    // reported by the plain reader).
+    if (rates) mixed = payload.size() >= 2 && static_cast<unsigned char>(payload[1]) == kTimedMixed;
     if (mixed)
-        return read_segment_model_with<MixDecIo>(payload, p, axes, expand, out, counts, where, window, items, timed);
-    return read_segment_model_with<DecIo>(payload, p, axes, expand, out, counts, where, window, items, timed);
+        return read_segment_model_with<MixDecIo>(payload, p, axes, expand, out, counts, where, window, items, t);
+    return read_segment_model_with<DecIo>(payload, p, axes, expand, out, counts, where, window, items, t);
 }
 
 }  // namespace stepzip::stz

@@ -64,43 +64,70 @@ void TimedPhase::advance(Profile p, const Segment& seg, int axes) {
     }
 }
 
+bool time_leads(const Segment& seg, int axes) {
+    if (seg.delta[0] <= 0 || seg.delta[0] > kMaxSegmentTotal) return false;
+    for (int i = 1; i < axes; ++i)
+        if (std::llabs(seg.delta[static_cast<std::size_t>(i)]) > seg.delta[0]) return false;
+    return true;
+}
+
+namespace {
+__extension__ typedef __int128 i128;
+// floor(n / d) for d > 0.
+i128 floor_div(i128 n, i128 d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+// An axis resting longer than this many ticks is forgotten (magnitudes stay below 2^62).
+constexpr std::int64_t kMaxRest = std::int64_t{1} << 26;
+}  // namespace
+
+void TimedRates::reset() {
+    for (auto& a : axis_) a = AxisRate{};
+}
+
+std::int64_t TimedRates::predict(Profile p, const Segment& seg, int axes, int j) const {
+    if (!time_leads(seg, axes)) {  // not a timed segment (a corrupt block): no prediction
+        const auto ab = phase_arguments(p, seg, axes, j);
+        return ab ? default_phase(p, ab->first, ab->second) : 0;
+    }
+    const std::int64_t l = seg.delta[0];
+    const std::int64_t s = std::llabs(seg.delta[static_cast<std::size_t>(j + 1)]);
+    const PhaseRange r = phase_range(p, l, s);
+    if (r.hi - r.lo == 1) return r.lo;
+    const AxisRate& a = axis_[static_cast<std::size_t>(j)];
+    if (!a.known) return default_phase(p, l, s);
+    // First move one period after the last, the period pooled over the
+    // segment the axis last moved in and this one: at t = num/den + (lp + l) /
+    // (sp + s) ticks from the segment's start; its phase is s · t, rounded
+    // half up (FORMAT.md "Timed block").
+    const i128 num = i128{s} * a.num * (a.sp + s) + i128{s} * (a.lp + l) * a.den;
+    const i128 den = i128{a.den} * (a.sp + s);
+    const i128 f = floor_div(2 * num + den, 2 * den);
+    return static_cast<std::int64_t>(std::clamp<i128>(f, r.lo, r.hi - 1));
+}
+
+void TimedRates::advance(Profile, const Segment& seg, int axes) {
+    if (!time_leads(seg, axes)) {
+        reset();
+        return;
+    }
+    const std::int64_t l = seg.delta[0];
+    for (int j = 0; j + 1 < axes; ++j) {
+        AxisRate& a = axis_[static_cast<std::size_t>(j)];
+        const std::int64_t s = std::llabs(seg.delta[static_cast<std::size_t>(j + 1)]);
+        if (s > 0) {
+            // The last of s moves of a line of phase f: at (f - l) / s.
+            const std::int64_t f = s < l ? seg.phase[static_cast<std::size_t>(j)] : 0;
+            a = AxisRate{true, f - l, s, l, s};
+        } else if (a.known) {
+            a.num -= l * a.den;
+            if (-a.num > kMaxRest * a.den) a = AxisRate{};
+        }
+    }
+}
+
 void align_timed_phases(Profile p, int axes, std::vector<Segment>& segs) {
     if (!leading_axis_profile(p)) return;
     TimedPhase tp;
-    tp.reset();
-    std::vector<Step> want, got;
-    auto draws_same = [&](Segment s) {
-        got.clear();
-        expand_segment(p, s, axes, got);
-        return got == want;
-    };
-    for (Segment& seg : segs) {
-        want.clear();
-        expand_segment(p, seg, axes, want);
-        for (int j = 0; j < axes - 1; ++j) {
-            const auto ab = phase_arguments(p, seg, axes, j);
-            if (!ab) break;
-            const PhaseRange r = phase_range(p, ab->first, ab->second);
-            if (r.hi - r.lo == 1) continue;
-            const std::int64_t pred = tp.predict(p, seg, axes, j);
-            std::int64_t good = seg.phase[j], bad = pred;
-            Segment trial = seg;
-            trial.phase[j] = pred;
-            if (draws_same(trial)) {
-                seg.phase[j] = pred;
-                continue;
-            }
-            // The valid phases form an interval around the current one: the
-            // boundary on the prediction's side, by bisection.
-            while (std::llabs(bad - good) > 1) {
-                const std::int64_t mid = good + (bad - good) / 2;
-                trial.phase[j] = mid;
-                (draws_same(trial) ? good : bad) = mid;
-            }
-            seg.phase[j] = good;
-        }
-        tp.advance(p, seg, axes);
-    }
+    align_phases(p, axes, segs, tp);
 }
 
 }  // namespace stepzip::stz
