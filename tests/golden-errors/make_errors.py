@@ -238,6 +238,18 @@ files.update({
     # A byte after the extra bits: every bit is read where the payload ended.
     'v2_table_extra_byte': ('corrupt', whereT % len(payloadT), table_block(payloadT + b'\x00')),
 })
+# Block type 7 subtype 0, the timed block (docs/FORMAT.md 1.12), from
+# tests/golden/v2/timed.steps.stz: its first block is a timed block.
+timed = open(os.path.join(here, '..', 'golden', 'v2', 'timed.steps.stz'), 'rb').read()
+assert timed[8] & 7 == 7, 'v2/timed.steps.stz should start with a timed block'
+t_csize, t_payload = varint_at(timed, 9)
+assert timed[t_payload] == 0 and timed[t_payload + 1] in (0, 1)
+files.update({
+    # A subtype that names no block (1 and up; the timed block is 0).
+    'v2_timed_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(timed, t_payload, 9))),
+    # A coding that is neither 0 (plain) nor 1 (mixed predictions).
+    'v2_timed_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(timed, t_payload + 1, 2))),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')
