@@ -7,7 +7,11 @@
 // step goes into the layout under a "sticky DIR" convention: a resting axis
 // is expected to keep the DIR level of the previous tick, so only DIR changes
 // on resting axes (exceptions) and idle ticks (no axis stepping) cost layout
-// bytes. Complexity: O(1) per tick.
+// bytes. A log whose resting axes drop their DIR bit instead (software that
+// writes each tick's step alone) has a flip after nearly every negative step
+// of a minor axis; a block where that convention, "DIR 0 at rest", has fewer
+// exceptions is read again under it (its layout starts with kZeroDir).
+// Complexity: O(1) per tick.
 #include <algorithm>
 
 #include "document_internal.hpp"
@@ -22,6 +26,7 @@ enum : std::uint8_t {
     kFlip = 0x80,   // bits 0-3: DIR bits of resting axes that flip on the next tick
     kLevel = 0xC0,  // bits 0-3: DIR level at the start of the block (first op only)
     kPaced = 0xD0,  // varint g, varint n: n times (one step tick, then g idle ticks)
+    kZeroDir = 0xD1,  // first op only: resting axes' DIR is 0 on every tick, not sticky
 };
 // Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
 constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
@@ -38,9 +43,10 @@ void put_count(std::string& out, std::uint8_t kind, std::uint64_t n) {
 
 class StepsParser final : public FormatParser {
 public:
-    StepsParser(std::string source, std::size_t block_steps)
-        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)) {
+    StepsParser(std::string source, std::size_t block_steps, bool zero_dir = false)
+        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)), zero_(zero_dir) {
         blk_.chains.emplace_back();
+        if (zero_) layout_.push_back(static_cast<char>(kZeroDir));
     }
 
     Result<void> feed(std::string_view data, bool last) override;
@@ -114,6 +120,13 @@ private:
     std::string source_;
     std::size_t block_steps_;
     std::size_t cap_;
+    // The block's layout under "DIR 0 at rest" when it has fewer
+    // exceptions than the sticky one (flips_ against zero_ticks_).
+    void prefer_zero_dir(Block& b) const;
+
+    bool zero_ = false;            // "DIR 0 at rest": the level is 0 before every tick
+    std::uint64_t flips_ = 0;      // sticky flips in the block
+    std::uint64_t zero_ticks_ = 0; // ticks of the block with a DIR bit on a resting axis
     std::uint8_t level_ = 0;  // DIR bits of the previous tick
     std::uint8_t seen_ = 0;   // STEP bits seen anywhere so far
     Block blk_;
@@ -135,7 +148,19 @@ Block StepsParser::take_block(bool open) {
     b.open = open;
     b.layout = std::move(layout_);
     layout_.clear();
+    if (!zero_ && zero_ticks_ < flips_) prefer_zero_dir(b);
+    flips_ = 0;
+    zero_ticks_ = 0;
     return b;
+}
+
+void StepsParser::prefer_zero_dir(Block& b) const {
+    // The block's ticks, rendered from the sticky layout, read again.
+    std::string ticks;
+    if (!make_steps_renderer()->write(b, ticks)) return;
+    StepsParser again(source_, SIZE_MAX, true);
+    if (!again.feed(ticks, true) || again.ready.size() != 1) return;
+    b.layout = std::move(again.ready.front().layout);
 }
 
 void StepsParser::cut(bool open) {
@@ -169,7 +194,9 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
         if (flip != 0) {
             flush_all();
             layout_.push_back(static_cast<char>(kFlip | dir_to_mask(flip)));
+            ++flips_;
         }
+        zero_ticks_ += (dirs & ~moving_dirs) != 0;
         if (stepping != 0) {
             run(kSteps);
             steps->push_back(static_cast<Step>(b & (stepping | moving_dirs)));
@@ -178,7 +205,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
         } else {
             run(kIdle);
         }
-        level_ = dirs;
+        level_ = zero_ ? 0 : dirs;
         if (stepping == 0 || layout_.size() >= cap_) continue;
         // The step ticks that follow without a DIR change on a resting axis
         // (the common case) in one pass: the same run, no layout byte, no
@@ -188,15 +215,20 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
                                                          kMaxRun - run_n_);
         const std::size_t lim = i + 1 + std::min(size - i - 1, room);
         std::uint8_t lvl = level_, seen = 0;
+        const std::uint8_t keep = zero_ ? 0 : kDirBits;
+        std::uint64_t rest_dirs = 0;
         while (e < lim) {
             const std::uint8_t c = in[e];
             const auto st = static_cast<std::uint8_t>(c & kStepBits);
-            const auto flips = static_cast<std::uint8_t>(((c & kDirBits) ^ lvl) & ~(st << 1) & kDirBits);
+            const auto resting = static_cast<std::uint8_t>(~(st << 1) & kDirBits);
+            const auto flips = static_cast<std::uint8_t>(((c & kDirBits) ^ lvl) & resting);
             if (st == 0 || flips != 0) break;
-            lvl = c & kDirBits;
+            rest_dirs += (c & resting) != 0;
+            lvl = c & keep;
             seen |= st;
             ++e;
         }
+        zero_ticks_ += rest_dirs;
         const std::size_t k = e - i - 1;
         if (k == 0) continue;
         const std::size_t base = steps->size();
@@ -234,6 +266,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
         if (!step_valid(s, 4)) return corrupt("steps", "a step outside four axes");
     std::uint8_t level = 0;
     std::uint8_t flip = 0;
+    std::uint8_t keep = kDirBits;  // 0 under kZeroDir: no level carries to the next tick
     std::size_t k = 0;
     auto emit_steps = [&](std::uint64_t n) {
         for (std::uint64_t j = 0; j < n; ++j) {
@@ -241,7 +274,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
             if (flip & ((s & kStepBits) << 1)) return false;
             const std::uint8_t byte = tick_byte(s, level, flip);
             out.push_back(static_cast<char>(byte));
-            level = byte & kDirBits;
+            level = byte & keep;
             flip = 0;
         }
         return true;
@@ -259,6 +292,12 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
         lc.u8(op);
         const std::uint8_t kind = op & 0xC0;
         const std::uint8_t arg = op & 0x3F;
+        if (op == kZeroDir) {
+            if (!first) return corrupt("steps", "DIR 0 at rest after the first operation");
+            first = false;
+            keep = 0;
+            continue;
+        }
         if (op == kPaced) {
             first = false;
             std::uint64_t g = 0, n = 0;
@@ -295,7 +334,7 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
             if (!emit_steps(n)) return corrupt("steps", "a flip on a stepping axis");
         } else {
             out.push_back(static_cast<char>(level ^ flip));
-            level ^= flip;
+            level = (level ^ flip) & keep;
             flip = 0;
             out.append(static_cast<std::size_t>(n - 1), static_cast<char>(level));
         }
