@@ -569,6 +569,55 @@ TEST(StepsRoundTrip, DirZeroAtRestOnlyAsTheFirstOperation) {
     EXPECT_EQ(res.error().code, Errc::corrupt);
 }
 
+TEST(StepsRoundTrip, VaryingGapsAfterSingleStepsFormGapLists) {
+    // One step, then 1..5 idle ticks (a rate that changes every step), then
+    // a long constant pace, then varying gaps again.
+    std::mt19937 rng(8);
+    std::string log;
+    auto pair = [&](int g) {
+        log += '\x01';
+        log.append(static_cast<std::size_t>(g), '\0');
+    };
+    for (int i = 0; i < 100; ++i) pair(1 + static_cast<int>(rng() % 5));
+    for (int i = 0; i < 100; ++i) pair(3);
+    for (int i = 0; i < 100; ++i) pair(1 + static_cast<int>(rng() % 5));
+    auto blocks = read_blocks(InputFormat::steps, log, kDefaultBlockSteps, log.size());
+    ASSERT_EQ(blocks.size(), 1u);
+    ASSERT_EQ(render(InputFormat::steps, blocks), log);
+    const std::string& layout = blocks[0].layout;
+    // gap list, pace, gap list: a byte per pair in a list, a few for the pace.
+    ASSERT_GE(layout.size(), 2u);
+    EXPECT_EQ(static_cast<std::uint8_t>(layout[0]), 0xD2);
+    EXPECT_EQ(std::count(layout.begin(), layout.end(), '\xD0'), 1);
+    EXPECT_LE(layout.size(), 220u);
+    round_trip(InputFormat::steps, log, {1, 7, 150, kDefaultBlockSteps});
+    // A lone pace of a few pairs keeps its paced op.
+    const std::string paced = "\x01\x00\x00\x01\x00\x00\x01\x00\x00\x05"s;
+    blocks = read_blocks(InputFormat::steps, paced, kDefaultBlockSteps, paced.size());
+    ASSERT_EQ(blocks.size(), 1u);
+    EXPECT_EQ(blocks[0].layout, "\xD0\x02\x03\x00"s);
+}
+
+TEST(StepsRoundTrip, GapListsAreChecked) {
+    Block b;
+    b.axes = 2;
+    Chain c;
+    c.axes = 2;
+    c.steps = {make_step2(1, 0), make_step2(1, 0)};
+    b.chains.push_back(c);
+    b.layout = "\xD2\x02\x00\x02"s;  // two pairs: gaps 1 and 3
+    std::string out;
+    ASSERT_TRUE(BlockWriter(InputFormat::steps).write(b, out).ok());
+    EXPECT_EQ(out, "\x01\x00\x01\x00\x00\x00"s);
+    for (const std::string bad : {"\xD2\x01\x00\x00\x00"s, "\xD2\x03\x00\x00\x00"s, "\xD2\x02\x00"s}) {
+        b.layout = bad;
+        out.clear();
+        auto res = BlockWriter(InputFormat::steps).write(b, out);
+        ASSERT_FALSE(res.ok());
+        EXPECT_EQ(res.error().code, Errc::corrupt);
+    }
+}
+
 TEST(StepsRoundTrip, WriteChainsUsesStickyDir) {
     Chain c;
     c.axes = 2;

@@ -27,7 +27,12 @@ enum : std::uint8_t {
     kLevel = 0xC0,  // bits 0-3: DIR level at the start of the block (first op only)
     kPaced = 0xD0,  // varint g, varint n: n times (one step tick, then g idle ticks)
     kZeroDir = 0xD1,  // first op only: resting axes' DIR is 0 on every tick, not sticky
+    kGaps = 0xD2,     // varint n, n varints g - 1: n times (one step tick, then g idle ticks)
 };
+// Repeated (1 step, g idle) pairs shorter than this go into a gap list
+// (kGaps), where a general-purpose compressor sees the gaps side by side;
+// longer ones stay kPaced.
+constexpr std::uint64_t kPacedMin = 64;
 // Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
 constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
 
@@ -52,8 +57,9 @@ public:
     Result<void> feed(std::string_view data, bool last) override;
 
 private:
-    // Runs go through a small stage that folds repeated (1 step, g idle)
-    // pairs, the shape of a log sampled at a fixed tick rate, into kPaced.
+    // Runs go through a small stage that folds (1 step, g idle) pairs, the
+    // shape of a log sampled at a fixed tick rate, into kPaced (a long run
+    // of one g) or a gap list (kGaps, the gaps of consecutive pairs).
     void flush_run() {
         if (run_n_ == 0) return;
         const std::uint64_t n = run_n_;
@@ -65,7 +71,7 @@ private:
                 return;
             }
             flush_pace();
-            put_count(layout_, kSteps, n);
+            put_count(out(), kSteps, n);
             return;
         }
         if (held_) {
@@ -80,31 +86,67 @@ private:
             return;
         }
         flush_pace();
-        put_count(layout_, kIdle, n);
+        put_count(out(), kIdle, n);
+    }
+    // A run of n pairs of one gap g: one pair as its two runs, a pace.
+    void put_pace(std::uint64_t g, std::uint64_t n) {
+        if (n == 1) {
+            put_count(layout_, kSteps, 1);
+            put_count(layout_, kIdle, g);
+        } else {
+            layout_.push_back(static_cast<char>(kPaced));
+            put_varint(layout_, g);
+            put_varint(layout_, n);
+        }
     }
     void flush_pace() {
-        if (pace_n_ == 1) {
-            put_count(layout_, kSteps, 1);
-            put_count(layout_, kIdle, pace_g_);
-        } else if (pace_n_ > 1) {
-            layout_.push_back(static_cast<char>(kPaced));
-            put_varint(layout_, pace_g_);
-            put_varint(layout_, pace_n_);
+        if (pace_n_ == 0) return;
+        if (pace_n_ >= kPacedMin || gap_n_ + pace_n_ > kMaxRun) {
+            flush_gaps();
+            put_pace(pace_g_, pace_n_);
+        } else {
+            if (gap_n_ == 0) {
+                gap_g_ = pace_g_;
+                gap_same_ = true;
+            } else if (pace_g_ != gap_g_) {
+                gap_same_ = false;
+            }
+            for (std::uint64_t k = 0; k < pace_n_; ++k) put_varint(gaps_, pace_g_ - 1);
+            gap_n_ += pace_n_;
         }
         pace_n_ = 0;
+    }
+    /// The layout, after the pending gap list.
+    std::string& out() {
+        flush_gaps();
+        return layout_;
+    }
+    void flush_gaps() {
+        if (gap_n_ == 0) return;
+        if (gap_same_) {
+            put_pace(gap_g_, gap_n_);
+        } else {
+            layout_.push_back(static_cast<char>(kGaps));
+            put_varint(layout_, gap_n_);
+            layout_ += gaps_;
+        }
+        gaps_.clear();
+        gap_n_ = 0;
     }
     void release_held() {
         if (!held_) return;
         held_ = false;
         flush_pace();
-        put_count(layout_, kSteps, 1);
+        put_count(out(), kSteps, 1);
     }
     /// Everything pending into the layout.
     void flush_all() {
         flush_run();
         release_held();
         flush_pace();
+        flush_gaps();
     }
+    std::size_t layout_size() const { return layout_.size() + gaps_.size(); }
     void run(std::uint8_t kind) {
         if (run_n_ != 0 && (run_kind_ != kind || run_n_ == kMaxRun)) flush_run();
         run_kind_ = kind;
@@ -137,6 +179,10 @@ private:
     bool held_ = false;            // a run of one step waits for its idle run
     std::uint64_t pace_g_ = 0;     // pending kPaced: idle ticks per pair
     std::uint64_t pace_n_ = 0;     // pending kPaced: pairs
+    std::string gaps_;             // pending gap list: varint g - 1 per pair
+    std::uint64_t gap_n_ = 0;      // its pairs
+    std::uint64_t gap_g_ = 0;      // the gap of its pairs while they all have one
+    bool gap_same_ = true;
     bool finished_ = false;
 };
 
@@ -186,7 +232,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     for (std::size_t i = 0; i < size; ++i) {
         const std::uint8_t b = in[i];
         const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
-        if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_.size() >= cap_) {
+        if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_size() >= cap_) {
             cut(true);
             steps = &blk_.chains.back().steps;
             steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
@@ -206,7 +252,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
             run(kIdle);
         }
         level_ = zero_ ? 0 : dirs;
-        if (stepping == 0 || layout_.size() >= cap_) continue;
+        if (stepping == 0 || layout_size() >= cap_) continue;
         // The step ticks that follow without a DIR change on a resting axis
         // (the common case) in one pass: the same run, no layout byte, no
         // cut before the block is full; measured first, then written at once.
@@ -296,6 +342,19 @@ Result<void> StepsRenderer::write(const Block& b, std::string& out) {
             if (!first) return corrupt("steps", "DIR 0 at rest after the first operation");
             first = false;
             keep = 0;
+            continue;
+        }
+        if (op == kGaps) {
+            first = false;
+            std::uint64_t n = 0;
+            if (!lc.varint(n) || n < 2 || n > kMaxRun) return corrupt("steps", "a bad gap list");
+            if (n > steps.size() - k) return corrupt("steps", "a run past the block's steps");
+            for (std::uint64_t j = 0; j < n; ++j) {
+                std::uint64_t g1 = 0;
+                if (!lc.varint(g1) || g1 >= kMaxRun) return corrupt("steps", "a bad gap list");
+                if (!emit_steps(1)) return corrupt("steps", "a flip on a stepping axis");
+                out.append(static_cast<std::size_t>(g1 + 1), static_cast<char>(level));
+            }
             continue;
         }
         if (op == kPaced) {
