@@ -549,6 +549,17 @@ TEST(StepsRoundTrip, DirZeroAtRestIsChosenWhereItHasFewerExceptions) {
     ASSERT_EQ(blocks.size(), 1u);
     ASSERT_FALSE(blocks[0].layout.empty());
     EXPECT_NE(static_cast<std::uint8_t>(blocks[0].layout[0]), 0xD1);
+    // A block picks its convention on its first 4096 steps and keeps it.
+    const std::string zero = zero_dir_log(rng, 200, 0);
+    ASSERT_GT(sticky.size(), 4096u);
+    ASSERT_GT(zero.size(), 4096u);
+    for (const auto& [log, zero_first] : {std::pair{sticky + zero, false}, std::pair{zero + sticky, true}}) {
+        blocks = read_blocks(InputFormat::steps, log, kDefaultBlockSteps, log.size());
+        ASSERT_EQ(blocks.size(), 1u);
+        ASSERT_FALSE(blocks[0].layout.empty());
+        EXPECT_EQ(static_cast<std::uint8_t>(blocks[0].layout[0]) == 0xD1, zero_first);
+        round_trip(InputFormat::steps, log, {kDefaultBlockSteps});
+    }
 }
 
 TEST(StepsRoundTrip, DirZeroAtRestOnlyAsTheFirstOperation) {

@@ -33,6 +33,10 @@ enum : std::uint8_t {
 // (kGaps), where a general-purpose compressor sees the gaps side by side;
 // longer ones stay kPaced.
 constexpr std::uint64_t kPacedMin = 64;
+// Steps of a block read under sticky DIR before it picks its convention
+// (a smaller block picks at its end): only these are read twice when DIR 0
+// at rest wins.
+constexpr std::size_t kDecideSteps = 4096;
 // Counts: argument 0..62 means 1..63; 63 means 64 + a varint that follows.
 constexpr std::uint64_t kMaxRun = std::uint64_t{1} << 32;
 
@@ -49,7 +53,8 @@ void put_count(std::string& out, std::uint8_t kind, std::uint64_t n) {
 class StepsParser final : public FormatParser {
 public:
     StepsParser(std::string source, std::size_t block_steps, bool zero_dir = false)
-        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)), zero_(zero_dir) {
+        : source_(std::move(source)), block_steps_(block_steps), cap_(layout_cap(block_steps)), zero_(zero_dir),
+          decided_(zero_dir) {
         blk_.chains.emplace_back();
         if (zero_) layout_.push_back(static_cast<char>(kZeroDir));
     }
@@ -162,11 +167,16 @@ private:
     std::string source_;
     std::size_t block_steps_;
     std::size_t cap_;
-    // The block's layout under "DIR 0 at rest" when it has fewer
-    // exceptions than the sticky one (flips_ against zero_ticks_).
-    void prefer_zero_dir(Block& b) const;
+    // The layout of `b` (the block so far) read again under "DIR 0 at rest".
+    std::string zero_dir_layout(const Block& b) const;
+    // After kDecideSteps steps: DIR 0 at rest from here on when it has had
+    // fewer exceptions than sticky DIR (zero_ticks_ against flips_); the
+    // layout so far is read again under it.
+    void decide();
 
     bool zero_ = false;            // "DIR 0 at rest": the level is 0 before every tick
+    bool decided_ = false;         // the block's convention is fixed
+    std::uint8_t last_dirs_ = 0;   // DIR bits of the previous tick (level_ unless zero_)
     std::uint64_t flips_ = 0;      // sticky flips in the block
     std::uint64_t zero_ticks_ = 0; // ticks of the block with a DIR bit on a resting axis
     std::uint8_t level_ = 0;  // DIR bits of the previous tick
@@ -194,19 +204,41 @@ Block StepsParser::take_block(bool open) {
     b.open = open;
     b.layout = std::move(layout_);
     layout_.clear();
-    if (!zero_ && zero_ticks_ < flips_) prefer_zero_dir(b);
+    if (!decided_ && zero_ticks_ < flips_) {
+        std::string z = zero_dir_layout(b);
+        if (!z.empty()) b.layout = std::move(z);
+    }
     flips_ = 0;
     zero_ticks_ = 0;
+    zero_ = decided_ = false;
+    level_ = last_dirs_;
     return b;
 }
 
-void StepsParser::prefer_zero_dir(Block& b) const {
-    // The block's ticks, rendered from the sticky layout, read again.
+std::string StepsParser::zero_dir_layout(const Block& b) const {
+    // The ticks, rendered from the sticky layout, read again.
     std::string ticks;
-    if (!make_steps_renderer()->write(b, ticks)) return;
+    if (!make_steps_renderer()->write(b, ticks)) return {};
     StepsParser again(source_, SIZE_MAX, true);
-    if (!again.feed(ticks, true) || again.ready.size() != 1) return;
-    b.layout = std::move(again.ready.front().layout);
+    if (!again.feed(ticks, true) || again.ready.size() != 1) return {};
+    return std::move(again.ready.front().layout);
+}
+
+void StepsParser::decide() {
+    decided_ = true;
+    if (zero_ticks_ >= flips_) return;
+    flush_all();
+    Block so_far;
+    so_far.axes = axes();
+    so_far.continues = blk_.continues;
+    so_far.chains = blk_.chains;
+    for (Chain& c : so_far.chains) c.axes = so_far.axes;
+    so_far.layout = layout_;
+    std::string z = zero_dir_layout(so_far);
+    if (z.empty()) return;
+    layout_ = std::move(z);
+    zero_ = true;
+    level_ = 0;
 }
 
 void StepsParser::cut(bool open) {
@@ -230,6 +262,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     const auto* in = reinterpret_cast<const std::uint8_t*>(data.data());
     const std::size_t size = data.size();
     for (std::size_t i = 0; i < size; ++i) {
+        if (!decided_ && blk_steps_ >= kDecideSteps) decide();
         const std::uint8_t b = in[i];
         const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
         if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_size() >= cap_) {
@@ -252,13 +285,16 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
             run(kIdle);
         }
         level_ = zero_ ? 0 : dirs;
+        last_dirs_ = dirs;
         if (stepping == 0 || layout_size() >= cap_) continue;
         // The step ticks that follow without a DIR change on a resting axis
         // (the common case) in one pass: the same run, no layout byte, no
         // cut before the block is full; measured first, then written at once.
         std::size_t e = i + 1;
-        const std::size_t room = std::min<std::uint64_t>(block_steps_ - std::min(blk_steps_, block_steps_),
-                                                         kMaxRun - run_n_);
+        // (Undecided, it stops at kDecideSteps: the choice is made there
+        // whatever the feeding.)
+        const std::size_t full = decided_ ? block_steps_ : std::min(block_steps_, kDecideSteps);
+        const std::size_t room = std::min<std::uint64_t>(full - std::min(blk_steps_, full), kMaxRun - run_n_);
         const std::size_t lim = i + 1 + std::min(size - i - 1, room);
         std::uint8_t lvl = level_, seen = 0;
         const std::uint8_t keep = zero_ ? 0 : kDirBits;
@@ -288,6 +324,7 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
         run_n_ += k;
         seen_ |= seen;
         level_ = lvl;
+        last_dirs_ = in[e - 1] & kDirBits;
         i = e - 1;
     }
     if (last) {
