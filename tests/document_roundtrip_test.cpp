@@ -490,6 +490,145 @@ TEST(StepsRoundTrip, StickyDirKeepsSyntheticLogLayoutsSmall) {
     }
 }
 
+// A log written one step at a time: each tick's byte holds the DIR bits of
+// its stepping axes only (resting axes at DIR 0), `idle` idle ticks of 0
+// after every step.
+std::string zero_dir_log(std::mt19937& rng, int moves, int idle) {
+    std::string log;
+    for (int m = 0; m < moves; ++m) {
+        const int dx = static_cast<int>(rng() % 201) - 100, dy = static_cast<int>(rng() % 201) - 100;
+        const int L = std::max(std::abs(dx), std::abs(dy)), S = std::min(std::abs(dx), std::abs(dy));
+        const bool xl = std::abs(dx) >= std::abs(dy);
+        int e = L / 2;
+        for (int k = 0; k < L; ++k) {
+            bool minor = false;
+            e -= S;
+            if (e < 0) {
+                e += L;
+                minor = true;
+            }
+            const bool x = xl || minor, y = !xl || minor;
+            std::uint8_t b = 0;
+            if (x && dx != 0) b |= dx < 0 ? 0x03 : 0x01;
+            if (y && dy != 0) b |= dy < 0 ? 0x0C : 0x04;
+            if (b == 0) continue;
+            log += static_cast<char>(b);
+            log.append(static_cast<std::size_t>(idle), '\0');
+        }
+    }
+    return log;
+}
+
+TEST(StepsRoundTrip, DirZeroAtRestIsChosenWhereItHasFewerExceptions) {
+    std::mt19937 rng(5);
+    for (int idle : {0, 2}) {
+        const std::string log = zero_dir_log(rng, 200, idle);
+        auto blocks = read_blocks(InputFormat::steps, log, kDefaultBlockSteps, log.size());
+        ASSERT_EQ(blocks.size(), 1u);
+        ASSERT_EQ(render(InputFormat::steps, blocks), log);
+        // Sticky DIR would flip a resting axis after about every negative
+        // minor step; DIR 0 at rest has no exception at all.
+        std::size_t sticky_flips = 0;
+        std::uint8_t level = 0;
+        for (char ch : log) {
+            const auto b = static_cast<std::uint8_t>(ch);
+            if (((b ^ level) & 0xAA & ~((b & 0x55) << 1)) != 0) ++sticky_flips;
+            level = b & 0xAA;
+        }
+        EXPECT_GT(sticky_flips, 1000u);
+        ASSERT_FALSE(blocks[0].layout.empty());
+        EXPECT_EQ(static_cast<std::uint8_t>(blocks[0].layout[0]), 0xD1);
+        EXPECT_LE(blocks[0].layout.size(), 8u + 4u * 200u);
+        // Every block (small ones continue a move mid-way) chooses alone,
+        // whatever the feeding.
+        round_trip(InputFormat::steps, log, {1, 7, 1000, kDefaultBlockSteps});
+    }
+    // A sticky log keeps the sticky layout.
+    const std::string sticky = synthetic_log(rng, 200, 1, 0);
+    auto blocks = read_blocks(InputFormat::steps, sticky, kDefaultBlockSteps, sticky.size());
+    ASSERT_EQ(blocks.size(), 1u);
+    ASSERT_FALSE(blocks[0].layout.empty());
+    EXPECT_NE(static_cast<std::uint8_t>(blocks[0].layout[0]), 0xD1);
+    // A block picks its convention on its first 4096 steps and keeps it.
+    const std::string zero = zero_dir_log(rng, 200, 0);
+    ASSERT_GT(sticky.size(), 4096u);
+    ASSERT_GT(zero.size(), 4096u);
+    for (const auto& [log, zero_first] : {std::pair{sticky + zero, false}, std::pair{zero + sticky, true}}) {
+        blocks = read_blocks(InputFormat::steps, log, kDefaultBlockSteps, log.size());
+        ASSERT_EQ(blocks.size(), 1u);
+        ASSERT_FALSE(blocks[0].layout.empty());
+        EXPECT_EQ(static_cast<std::uint8_t>(blocks[0].layout[0]) == 0xD1, zero_first);
+        round_trip(InputFormat::steps, log, {kDefaultBlockSteps});
+    }
+}
+
+TEST(StepsRoundTrip, DirZeroAtRestOnlyAsTheFirstOperation) {
+    Block b;
+    b.axes = 2;
+    Chain c;
+    c.axes = 2;
+    c.steps = {make_step2(-1, 0), make_step2(0, 1)};
+    b.chains.push_back(c);
+    b.layout = "\xD1\x01"s;  // DIR 0 at rest, two steps
+    std::string out;
+    ASSERT_TRUE(BlockWriter(InputFormat::steps).write(b, out).ok());
+    EXPECT_EQ(out, "\x03\x04"s);  // the sticky convention would give 03 06
+    b.layout = "\x00\xD1\x00"s;
+    out.clear();
+    auto res = BlockWriter(InputFormat::steps).write(b, out);
+    ASSERT_FALSE(res.ok());
+    EXPECT_EQ(res.error().code, Errc::corrupt);
+}
+
+TEST(StepsRoundTrip, VaryingGapsAfterSingleStepsFormGapLists) {
+    // One step, then 1..5 idle ticks (a rate that changes every step), then
+    // a long constant pace, then varying gaps again.
+    std::mt19937 rng(8);
+    std::string log;
+    auto pair = [&](int g) {
+        log += '\x01';
+        log.append(static_cast<std::size_t>(g), '\0');
+    };
+    for (int i = 0; i < 100; ++i) pair(1 + static_cast<int>(rng() % 5));
+    for (int i = 0; i < 100; ++i) pair(3);
+    for (int i = 0; i < 100; ++i) pair(1 + static_cast<int>(rng() % 5));
+    auto blocks = read_blocks(InputFormat::steps, log, kDefaultBlockSteps, log.size());
+    ASSERT_EQ(blocks.size(), 1u);
+    ASSERT_EQ(render(InputFormat::steps, blocks), log);
+    const std::string& layout = blocks[0].layout;
+    // gap list, pace, gap list: a byte per pair in a list, a few for the pace.
+    ASSERT_GE(layout.size(), 2u);
+    EXPECT_EQ(static_cast<std::uint8_t>(layout[0]), 0xD2);
+    EXPECT_EQ(std::count(layout.begin(), layout.end(), '\xD0'), 1);
+    EXPECT_LE(layout.size(), 220u);
+    round_trip(InputFormat::steps, log, {1, 7, 150, kDefaultBlockSteps});
+    // A lone pace of a few pairs keeps its paced op.
+    const std::string paced = "\x01\x00\x00\x01\x00\x00\x01\x00\x00\x05"s;
+    blocks = read_blocks(InputFormat::steps, paced, kDefaultBlockSteps, paced.size());
+    ASSERT_EQ(blocks.size(), 1u);
+    EXPECT_EQ(blocks[0].layout, "\xD0\x02\x03\x00"s);
+}
+
+TEST(StepsRoundTrip, GapListsAreChecked) {
+    Block b;
+    b.axes = 2;
+    Chain c;
+    c.axes = 2;
+    c.steps = {make_step2(1, 0), make_step2(1, 0)};
+    b.chains.push_back(c);
+    b.layout = "\xD2\x02\x00\x02"s;  // two pairs: gaps 1 and 3
+    std::string out;
+    ASSERT_TRUE(BlockWriter(InputFormat::steps).write(b, out).ok());
+    EXPECT_EQ(out, "\x01\x00\x01\x00\x00\x00"s);
+    for (const std::string bad : {"\xD2\x01\x00\x00\x00"s, "\xD2\x03\x00\x00\x00"s, "\xD2\x02\x00"s}) {
+        b.layout = bad;
+        out.clear();
+        auto res = BlockWriter(InputFormat::steps).write(b, out);
+        ASSERT_FALSE(res.ok());
+        EXPECT_EQ(res.error().code, Errc::corrupt);
+    }
+}
+
 TEST(StepsRoundTrip, WriteChainsUsesStickyDir) {
     Chain c;
     c.axes = 2;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # --format timed: a STEP/DIR log with idle ticks read with time as axis 0.
 # Round trip of corpora/timed/ at level 3, and of the 2-axis stream at 19
-# (compress, verify, decompress, byte-compare); the frame names the format;
-# the timed reading is smaller than the steps reading on the 2-axis stream.
+# (compress, verify, decompress, byte-compare); the frame names the format.
+# (The steps reading's gap lists, docs/formats.md, now make it smaller than
+# the timed reading at level 3 on the 2-axis stream: 6324 against 6916 bytes.)
 set -euo pipefail
 stepzip=$1
 src=$2
@@ -21,10 +22,6 @@ for f in "$src"/corpora/timed/*.steps; do
   "$stepzip" info "$work/t.stz" | grep -q '^input format: *timed$' || { echo "FAIL info format: $f"; fail=1; }
 done
 f=$src/corpora/timed/trapezoid-2axis.steps
-"$stepzip" compress -q -f --format timed "$f" -o "$work/t.stz"
-"$stepzip" compress -q -f --format steps "$f" -o "$work/s.stz"
-t=$(wc -c < "$work/t.stz"); s=$(wc -c < "$work/s.stz")
-[ "$t" -lt "$s" ] || { echo "FAIL timed $t bytes not below steps $s bytes: $f"; fail=1; }
 # An unknown format name is a usage error naming it.
 if "$stepzip" compress -q -f --format timing "$f" -o "$work/u.stz" 2>"$work/err"; then
   echo "FAIL --format timing accepted"; fail=1
