@@ -34,12 +34,44 @@ constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
+// The thorough levels make a zstd record (of the chain payload or of the
+// block's bytes) at the level only when zstd at kZstdProbeLevel makes one
+// under kZstdReach times the smallest record so far: on corpora/ the level
+// 19 output is at most 1.8 times smaller than level 6's (trapezoid-2axis;
+// 1.25-1.7 elsewhere) and takes 10-70 times as long.
+constexpr int kZstdProbeLevel = 6;
+constexpr std::size_t kZstdReach = 2;
+
+bool zstd_may_win(std::string_view bytes, const std::string& best) {
+    if (best.empty()) return true;
+    const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
+    return probe.empty() || probe.size() < kZstdReach * best.size();
+}
+
 // Segments every chain of `block` under `p` (cut_block()); errors name the
-// source, the chain and the step.
+// source, the chain and the step. The optimal segmenter reads up to
+// kOptimalWindow steps from every start, which on long segments (plots)
+// costs 15 times the rest of -L 19: it recuts only the chains whose greedy
+// segments average under kOptimalMeanSteps steps; the others keep the
+// greedy cut (chosen on corpora/plotter/gnuplot-grbl.fc, where all of the
+// optimal cut's gain, 2.3 %, comes from such chains).
+constexpr std::uint64_t kOptimalMeanSteps = 64;
+
 Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cut& segs, SegmentStats& stats,
                            std::uint64_t first_chain, const std::string& source) {
-    auto r = cut_block(block.chains, block.axes, p, block_cut_of(kind), segs, &stats, first_chain);
+    const bool optimal = kind == SegmenterKind::optimal;
+    auto r = cut_block(block.chains, block.axes, p, optimal ? BlockCut::greedy : block_cut_of(kind), segs, &stats,
+                       first_chain);
     if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+    if (!optimal) return {};
+    Cut one;
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        if (segs[i].size() < 2 || block.chains[i].steps.size() >= kOptimalMeanSteps * segs[i].size()) continue;
+        r = cut_block(std::span<const Chain>(&block.chains[i], 1), block.axes, p, BlockCut::optimal, one, nullptr,
+                      first_chain + i);
+        if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+        segs[i] = std::move(one[0]);
+    }
     return {};
 }
 
@@ -76,7 +108,9 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
     if (s.segmenter != SegmenterKind::greedy) {
         Cut greedy;
         SegmentStats unused;
-        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source)) cuts.push_back(std::move(greedy));
+        // (the optimal cut keeps the greedy one where it is not better)
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs)
+            cuts.push_back(std::move(greedy));
     }
     Cut aligned;
     const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
@@ -110,12 +144,15 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     s.profile = p;
     Cut segs;
     SegmentStats stats;
+    // The profiles are ranked by their segment models on the greedy cut:
+    // the optimal segmenter costs up to kOptimalWindow reads per step and
+    // the level's zstd seconds per MB, and neither changed the ranking on
+    // corpora/ (docs/benchmarks.md "Strong tier").
+    s.segmenter = s.segmenter == SegmenterKind::optimal ? SegmenterKind::greedy : s.segmenter;
     if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
-    const std::string rec = make_block_record(kChains, 0, write_chain_payload(block, p, segs), s.level);
     std::size_t which = 0;
     std::vector<Cut> cuts = model_cuts(block, s, segs, false);
-    const std::size_t model = smallest_segment_model(block, p, cuts, which, s.timed).size();
-    return rec.empty() ? model : std::min(rec.size(), model);
+    return smallest_segment_model(block, p, cuts, which, s.timed).size();
 }
 
 // About `limit` steps of `block` for estimates only: eight stretches of
@@ -232,6 +269,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
     bool segment_model_only = false;
+    std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
     if (representable(block, s.profile, s.axes)) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
@@ -246,11 +284,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         }
         std::uint64_t nsegs = 0;
         for (const auto& v : segs) nsegs += v.size();
-        if (s.thorough) {
-            const std::string payload = write_chain_payload(block, s.profile, segs);
-            if (payload.size() <= kMaxBlockPayload)
-                consider(kChains, make_block_record(kChains, job.flags, payload, s.level));
-        }
+        if (s.thorough) chain_payload = write_chain_payload(block, s.profile, segs);
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
             const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
@@ -291,6 +325,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
     }
+    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best))
+        consider(kChains, make_block_record(kChains, job.flags, chain_payload, s.level));
     const bool chain_kind = !best.empty();
     if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {
         job.error = make_error(Errc::limit, s.source + ": a block of " + std::to_string(job.bytes.size()) +
@@ -306,7 +342,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         put_varint(raw, block.chains.size());
         put_varint(raw, job.steps);
         raw += job.bytes;
-        if (consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level))) job.raw_payload = std::move(raw);
+        if ((!s.thorough || zstd_may_win(raw, best)) && consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level)))
+            job.raw_payload = std::move(raw);
     }
     if (best.empty()) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");
