@@ -22,8 +22,6 @@ inline constexpr int kThoroughLevel = 10;
 /// The strong tier: from this level on, a modeled block is also coded with
 /// mixed predictions (block type 6) and kept when smaller.
 inline constexpr int kStrongLevel = 10;
-/// From this level on, the mixed step model tries two context orders.
-inline constexpr int kStrongStepOrders = 16;
 
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {
