@@ -17,6 +17,8 @@ namespace {
 // Below kThoroughLevel: steps of the first block's sample that picks the
 // profile and the cut under --profile auto.
 constexpr std::uint64_t kSampleSteps = 1u << 15;
+// From kThoroughLevel: steps of the first block's sample that ranks the profiles.
+constexpr std::uint64_t kThoroughSampleSteps = 1u << 17;
 // Segments per 1000 steps below which the segment model always wins and
 // above which the step model always wins (measured on corpora/: 8.6..52
 // against 383..663); in between both are encoded.
@@ -225,9 +227,15 @@ int window_log_for_level(int level) {
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
     if (!s.profile_named && s.thorough) {
+        // A sample of kThoroughSampleSteps ranks the profiles, as the
+        // sample of the fast levels (the whole block when smaller).
+        std::uint64_t steps = 0;
+        for (const Chain& c : first.chains) steps += c.steps.size();
+        const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
+        const Block& trial = steps > kThoroughSampleSteps ? sample : first;
         std::size_t best = SIZE_MAX;
         for (Profile p : kAllProfiles) {
-            const std::size_t n = trial_size(first, p, s);
+            const std::size_t n = representable(first, p, first.axes) ? trial_size(trial, p, s) : SIZE_MAX;
             if (n < best) {
                 best = n;
                 s.profile = p;
