@@ -409,23 +409,15 @@ void note_items(BlockJob& job) {
         job.contribution->items = segment_items(job.block, job.cut);
 }
 
-namespace {
-
-// The strong levels: the block's model (as chosen, with the window when the
-// record uses it) coded again with mixed predictions (block type 6), kept
-// when at least 1/64 smaller: a mixed block decodes several times slower,
-// and on data the mixer cannot predict (random walks: about 1% smaller) it
-// is not worth that. The block's type (job.type) stays the model's.
 // A step-model block of more than kMixSampleSteps steps is coded mixed only
 // when its first chains (kMixSampleSteps steps, cut short, no window) are
 // at least 1/kMixSampleGain smaller mixed than plain at order 1: on random
 // walks mixing saves about 1 % (the block stays type 4) and the mixed
 // encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
 // (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
-constexpr std::uint64_t kMixSampleSteps = 1u << 15;
 constexpr std::size_t kMixSampleGain = 32;
 
-bool mixing_pays(const Block& block) {
+bool mixed_step_model_pays(const Block& block) {
     std::uint64_t total = 0;
     for (const Chain& c : block.chains) total += c.steps.size();
     if (total <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
@@ -446,6 +438,13 @@ bool mixing_pays(const Block& block) {
     return mixed * kMixSampleGain <= plain * (kMixSampleGain - 1);
 }
 
+namespace {
+
+// The strong levels: the block's model (as chosen, with the window when the
+// record uses it) coded again with mixed predictions (block type 6), kept
+// when at least 1/64 smaller: a mixed block decodes several times slower,
+// and on data the mixer cannot predict (random walks: about 1% smaller) it
+// is not worth that. The block's type (job.type) stays the model's.
 void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel)) return;
     const unsigned flags = view_record(job.record).flags;
@@ -463,7 +462,7 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
     // The hashed models see the long contexts: a short primary order wins
     // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4;
     // order 2 as well won nowhere in corpora/).
-    if (!mixing_pays(job.block)) return;
+    if (!mixed_step_model_pays(job.block)) return;
     keep(write_mixed_step_model(job.block, 1, w));
 }
 
