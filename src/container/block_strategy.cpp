@@ -36,6 +36,42 @@ constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
+std::uint64_t step_count(const Block& block) {
+    std::uint64_t n = 0;
+    for (const Chain& c : block.chains) n += c.steps.size();
+    return n;
+}
+
+// The first `limit` steps of `block` (whole chains, the last cut short),
+// without its layout: a sample for estimates (block has more steps).
+Block first_steps(const Block& block, std::uint64_t limit) {
+    Block out;
+    out.axes = block.axes;
+    for (std::uint64_t steps = 0; steps < limit && out.chains.size() < block.chains.size();) {
+        const Chain& c = block.chains[out.chains.size()];
+        Chain piece;
+        piece.axes = c.axes;
+        piece.start = c.start;
+        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(limit - steps, c.steps.size()));
+        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
+        steps += n;
+        out.chains.push_back(std::move(piece));
+    }
+    return out;
+}
+
+// The step-model context order of the thorough levels: 0 (every order
+// tried, the smallest kept) up to 2 * kMixSampleSteps steps; above, the
+// order that codes the block's first kMixSampleSteps steps smallest (each
+// order tried on the whole block was a tenth of -L 19's time on glyph
+// contours; the same orders on every corpus file).
+int thorough_step_order(const Block& block) {
+    if (step_count(block) <= 2 * kMixSampleSteps) return 0;
+    int order = 0;
+    write_step_model(first_steps(block, kMixSampleSteps), 0, nullptr, &order);
+    return order;
+}
+
 // The thorough levels make a zstd record (of the chain payload or of the
 // block's bytes) at the level only when zstd at kZstdProbeLevel makes one
 // under kZstdReach times the smallest record so far: on corpora/ the level
@@ -164,8 +200,7 @@ Block sample_of(const Block& block, std::uint64_t limit) {
     constexpr std::uint64_t kStretches = 8;
     Block out;
     out.axes = block.axes;
-    std::uint64_t total = 0;
-    for (const Chain& c : block.chains) total += c.steps.size();
+    const std::uint64_t total = step_count(block);
     std::uint64_t at = 0, next = 0, left = 0;
     const std::uint64_t each = std::max<std::uint64_t>(1, limit / kStretches);
     for (const Chain& c : block.chains) {
@@ -229,8 +264,7 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     if (!s.profile_named && s.thorough) {
         // A sample of kThoroughSampleSteps ranks the profiles, as the
         // sample of the fast levels (the whole block when smaller).
-        std::uint64_t steps = 0;
-        for (const Chain& c : first.chains) steps += c.steps.size();
+        const std::uint64_t steps = step_count(first);
         const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
         const Block& trial = steps > kThoroughSampleSteps ? sample : first;
         std::size_t best = SIZE_MAX;
@@ -328,7 +362,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     if (fits && job.steps <= kMaxBlockSteps && !segment_model_only &&
         (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps)) {
         int order = 0;
-        const std::string model = write_step_model(block, s.thorough ? 0 : kFastStepOrder, nullptr, &order);
+        const std::string model =
+            write_step_model(block, s.thorough ? thorough_step_order(block) : kFastStepOrder, nullptr, &order);
         if (!model.empty() && model.size() <= kMaxBlockPayload &&
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
@@ -393,7 +428,7 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
     if (!s.thorough && job.type == kSegmentModel &&
         std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; }))
         return;
-    int order = job.type == kStepModel ? job.order : s.thorough ? 0 : kFastStepOrder;
+    int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
     if (model.empty() || model.size() > kMaxBlockPayload) return;
     std::string rec = make_stored_record(kStepModel, job.flags | kFlagWindow, model);
@@ -418,21 +453,8 @@ void note_items(BlockJob& job) {
 constexpr std::size_t kMixSampleGain = 32;
 
 bool mixed_step_model_pays(const Block& block) {
-    std::uint64_t total = 0;
-    for (const Chain& c : block.chains) total += c.steps.size();
-    if (total <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
-    Block sample;
-    sample.axes = block.axes;
-    for (std::uint64_t steps = 0; steps < kMixSampleSteps;) {
-        const Chain& c = block.chains[sample.chains.size()];
-        Chain piece;
-        piece.axes = c.axes;
-        piece.start = c.start;
-        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(kMixSampleSteps - steps, c.steps.size()));
-        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
-        steps += n;
-        sample.chains.push_back(std::move(piece));
-    }
+    if (step_count(block) <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
+    const Block sample = first_steps(block, kMixSampleSteps);
     const std::size_t plain = write_step_model(sample, 1).size();
     const std::size_t mixed = write_mixed_step_model(sample, 1).size();
     return mixed * kMixSampleGain <= plain * (kMixSampleGain - 1);
