@@ -18,6 +18,8 @@ namespace {
 // Below kThoroughLevel: steps of the first block's sample that picks the
 // profile and the cut under --profile auto.
 constexpr std::uint64_t kSampleSteps = 1u << 15;
+// From kThoroughLevel: steps of the first block's sample that ranks the profiles.
+constexpr std::uint64_t kThoroughSampleSteps = 1u << 17;
 // Segments per 1000 steps below which the segment model always wins and
 // above which the step model always wins (measured on corpora/: 8.6..52
 // against 383..663); in between both are encoded.
@@ -35,12 +37,87 @@ constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
+std::uint64_t step_count(const Block& block) {
+    std::uint64_t n = 0;
+    for (const Chain& c : block.chains) n += c.steps.size();
+    return n;
+}
+
+// The first `limit` steps of `block` (whole chains, the last cut short),
+// without its layout: a sample for estimates (block has more steps).
+Block first_steps(const Block& block, std::uint64_t limit) {
+    Block out;
+    out.axes = block.axes;
+    for (std::uint64_t steps = 0; steps < limit && out.chains.size() < block.chains.size();) {
+        const Chain& c = block.chains[out.chains.size()];
+        Chain piece;
+        piece.axes = c.axes;
+        piece.start = c.start;
+        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(limit - steps, c.steps.size()));
+        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
+        steps += n;
+        out.chains.push_back(std::move(piece));
+    }
+    return out;
+}
+
+// The step-model context order of the thorough levels: 0 (every order
+// tried, the smallest kept) up to 2 * kMixSampleSteps steps; above, the
+// order that codes the block's first kMixSampleSteps steps smallest (each
+// order tried on the whole block was a tenth of -L 19's time on glyph
+// contours; the same orders on every corpus file).
+int thorough_step_order(const Block& block) {
+    if (step_count(block) <= 2 * kMixSampleSteps) return 0;
+    int order = 0;
+    write_step_model(first_steps(block, kMixSampleSteps), 0, nullptr, &order);
+    return order;
+}
+
+// The thorough levels make a zstd record (of the chain payload or of the
+// block's bytes) at the level only when zstd at kZstdProbeLevel makes one
+// under kZstdReach times the smallest record so far: on corpora/ the level
+// 19 output is at most 1.8 times smaller than level 6's (trapezoid-2axis;
+// 1.25-1.7 elsewhere) and takes 10-70 times as long.
+constexpr int kZstdProbeLevel = 6;
+constexpr std::size_t kZstdReach = 2;
+
+bool zstd_may_win(std::string_view bytes, const std::string& best) {
+    if (best.empty()) return true;
+    const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
+    return probe.empty() || probe.size() < kZstdReach * best.size();
+}
+
 // Segments every chain of `block` under `p` (cut_block()); errors name the
-// source, the chain and the step.
+// source, the chain and the step. The optimal segmenter reads up to
+// kOptimalWindow steps from every start, which on long segments (plots)
+// costs 15 times the rest of -L 19: it recuts only the chains whose greedy
+// segments average under kOptimalMeanSteps steps; the others keep the
+// greedy cut (chosen on corpora/plotter/gnuplot-grbl.fc, where all of the
+// optimal cut's gain, 2.3 %, comes from such chains).
+constexpr std::uint64_t kOptimalMeanSteps = 64;
+
 Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cut& segs, SegmentStats& stats,
                            std::uint64_t first_chain, const std::string& source) {
-    auto r = cut_block(block.chains, block.axes, p, block_cut_of(kind), segs, &stats, first_chain);
+    const bool optimal = kind == SegmenterKind::optimal;
+    auto r = cut_block(block.chains, block.axes, p, optimal ? BlockCut::greedy : block_cut_of(kind), segs, &stats,
+                       first_chain);
     if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+    if (!optimal) return {};
+    // A two-axis block too dense for the segment model is left to the step model.
+    std::uint64_t nsegs = 0, steps = 0;
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        nsegs += segs[i].size();
+        steps += block.chains[i].steps.size();
+    }
+    if (block.axes == 2 && nsegs * 1000 > kStepModelOnly * steps) return {};
+    Cut one;
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        if (segs[i].size() < 2 || block.chains[i].steps.size() >= kOptimalMeanSteps * segs[i].size()) continue;
+        r = cut_block(std::span<const Chain>(&block.chains[i], 1), block.axes, p, BlockCut::optimal, one, nullptr,
+                      first_chain + i);
+        if (!r) return make_error(r.error().code, source + ": " + r.error().message);
+        segs[i] = std::move(one[0]);
+    }
     return {};
 }
 
@@ -77,7 +154,9 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
     if (s.segmenter != SegmenterKind::greedy) {
         Cut greedy;
         SegmentStats unused;
-        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source)) cuts.push_back(std::move(greedy));
+        // (the optimal cut keeps the greedy one where it is not better)
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs)
+            cuts.push_back(std::move(greedy));
     }
     Cut aligned;
     const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
@@ -138,12 +217,14 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     s.profile = p;
     Cut segs;
     SegmentStats stats;
+    // The profiles are ranked by their segment models alone: zstd at the
+    // level costs seconds per MB and changed the ranking on no corpus file.
+    // (The greedy cut in place of the optimal one did: the 3.7 MB glyph
+    // file of docs/benchmarks.md took eval8 instead of marlin, 2.6 % larger.)
     if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
-    const std::string rec = make_block_record(kChains, 0, write_chain_payload(block, p, segs), s.level);
     std::size_t which = 0;
     std::vector<Cut> cuts = model_cuts(block, s, segs, false);
-    const std::size_t model = smallest_segment_model(block, p, cuts, which, s.timed).size();
-    return rec.empty() ? model : std::min(rec.size(), model);
+    return smallest_segment_model(block, p, cuts, which, s.timed).size();
 }
 
 // About `limit` steps of `block` for estimates only: eight stretches of
@@ -153,8 +234,7 @@ Block sample_of(const Block& block, std::uint64_t limit) {
     constexpr std::uint64_t kStretches = 8;
     Block out;
     out.axes = block.axes;
-    std::uint64_t total = 0;
-    for (const Chain& c : block.chains) total += c.steps.size();
+    const std::uint64_t total = step_count(block);
     std::uint64_t at = 0, next = 0, left = 0;
     const std::uint64_t each = std::max<std::uint64_t>(1, limit / kStretches);
     for (const Chain& c : block.chains) {
@@ -216,9 +296,14 @@ int window_log_for_level(int level) {
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
     if (!s.profile_named && s.thorough) {
+        // A sample of kThoroughSampleSteps ranks the profiles, as the
+        // sample of the fast levels (the whole block when smaller).
+        const std::uint64_t steps = step_count(first);
+        const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
+        const Block& trial = steps > kThoroughSampleSteps ? sample : first;
         std::size_t best = SIZE_MAX;
         for (Profile p : kAllProfiles) {
-            const std::size_t n = trial_size(first, p, s);
+            const std::size_t n = representable(first, p, first.axes) ? trial_size(trial, p, s) : SIZE_MAX;
             if (n < best) {
                 best = n;
                 s.profile = p;
@@ -260,6 +345,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
     bool segment_model_only = false;
+    std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
     if (representable(block, s.profile, s.axes)) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
@@ -274,11 +360,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         }
         std::uint64_t nsegs = 0;
         for (const auto& v : segs) nsegs += v.size();
-        if (s.thorough) {
-            const std::string payload = write_chain_payload(block, s.profile, segs);
-            if (payload.size() <= kMaxBlockPayload)
-                consider(kChains, make_block_record(kChains, job.flags, payload, s.level));
-        }
+        if (s.thorough) chain_payload = write_chain_payload(block, s.profile, segs);
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
             const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
@@ -289,8 +371,10 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // adaptive contexts need no tables (a table block's fixed cost), and
         // a small block decodes fast whatever its type. Timed frames keep the
         // segment model, which predicts their phases (FORMAT.md 1.5.1).
-        if (s.thorough || ((s.timed || job.steps < kSmallBlockSteps) &&
-                           (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps))) {
+        // Nor do the thorough levels code a two-axis block too dense for it
+        // (random walks): there the step model wins by 20-25 %.
+        if ((s.thorough || s.timed || job.steps < kSmallBlockSteps) &&
+            (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps)) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
@@ -315,11 +399,14 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     if (fits && job.steps <= kMaxBlockSteps && !segment_model_only &&
         (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps)) {
         int order = 0;
-        const std::string model = write_step_model(block, s.thorough ? 0 : kFastStepOrder, nullptr, &order);
+        const std::string model =
+            write_step_model(block, s.thorough ? thorough_step_order(block) : kFastStepOrder, nullptr, &order);
         if (!model.empty() && model.size() <= kMaxBlockPayload &&
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
     }
+    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best))
+        consider(kChains, make_block_record(kChains, job.flags, chain_payload, s.level));
     const bool chain_kind = !best.empty();
     if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {
         job.error = make_error(Errc::limit, s.source + ": a block of " + std::to_string(job.bytes.size()) +
@@ -335,7 +422,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         put_varint(raw, block.chains.size());
         put_varint(raw, job.steps);
         raw += job.bytes;
-        if (consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level))) job.raw_payload = std::move(raw);
+        if ((!s.thorough || zstd_may_win(raw, best)) && consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level)))
+            job.raw_payload = std::move(raw);
     }
     if (best.empty()) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");
@@ -377,7 +465,7 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
     if (!s.thorough && job.type == kSegmentModel &&
         std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; }))
         return;
-    int order = job.type == kStepModel ? job.order : s.thorough ? 0 : kFastStepOrder;
+    int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
     if (model.empty() || model.size() > kMaxBlockPayload) return;
     std::string rec = make_stored_record(kStepModel, job.flags | kFlagWindow, model);
@@ -391,6 +479,22 @@ void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView&
 void note_items(BlockJob& job) {
     if (job.contribution && (job.type == kSegmentModel || job.type == kTable || job.type == kExtended))
         job.contribution->items = segment_items(job.block, job.cut);
+}
+
+// A step-model block of more than kMixSampleSteps steps is coded mixed only
+// when its first chains (kMixSampleSteps steps, cut short, no window) are
+// at least 1/kMixSampleGain smaller mixed than plain at order 1: on random
+// walks mixing saves about 1 % (the block stays type 4) and the mixed
+// encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
+// (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
+constexpr std::size_t kMixSampleGain = 32;
+
+bool mixed_step_model_pays(const Block& block) {
+    if (step_count(block) <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
+    const Block sample = first_steps(block, kMixSampleSteps);
+    const std::size_t plain = write_step_model(sample, 1).size();
+    const std::size_t mixed = write_mixed_step_model(sample, 1).size();
+    return mixed * kMixSampleGain <= plain * (kMixSampleGain - 1);
 }
 
 namespace {
@@ -421,9 +525,10 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
         return;
     }
     // The hashed models see the long contexts: a short primary order wins
-    // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4).
+    // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4;
+    // order 2 as well won nowhere in corpora/).
+    if (!mixed_step_model_pays(job.block)) return;
     keep(write_mixed_step_model(job.block, 1, w));
-    if (s.level >= kStrongStepOrders) keep(write_mixed_step_model(job.block, 2, w));
 }
 
 }  // namespace

@@ -22,8 +22,15 @@ inline constexpr int kThoroughLevel = 10;
 /// The strong tier: from this level on, a modeled block is also coded with
 /// mixed predictions (block type 6) and kept when smaller.
 inline constexpr int kStrongLevel = 10;
-/// From this level on, the mixed step model tries two context orders.
-inline constexpr int kStrongStepOrders = 16;
+
+/// Above twice this many steps, a block's mixed step model is tried only
+/// when mixing pays on a sample of this many (mixed_step_model_pays()).
+inline constexpr std::uint64_t kMixSampleSteps = 1u << 15;
+
+/// Whether the strong levels code `block` (two axes) with the mixed step
+/// model: always up to 2 * kMixSampleSteps steps; above, when its first
+/// kMixSampleSteps steps are at least 1/32 smaller mixed than plain (order 1).
+bool mixed_step_model_pays(const Block& block);
 
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {

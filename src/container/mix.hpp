@@ -27,7 +27,8 @@
 
 namespace stepzip::stz {
 
-/// Hashed context models per predictor, at most.
+/// Hashed context models of every predictor (a compile-time count, so that
+/// the per-bit loops over them unroll).
 inline constexpr int kMixMaxModels = 6;
 /// log2 of the entries of each hashed table.
 inline constexpr int kMixTableBits = 20;
@@ -100,12 +101,11 @@ struct FreeDeleter {
 /// The mixing predictor of one block (docs/FORMAT.md "Mixed predictions").
 class MixPredictor {
 public:
-    /// `models` hashed context models (1..kMixMaxModels); `base`: the
-    /// coder's table of primary contexts (a decision's slot is its primary
-    /// context's index in it).
-    MixPredictor(int models, const Prob* base)
-        : n_(models), base_(base),
-          tables_(static_cast<mixdetail::HashedProb*>(std::calloc(static_cast<std::size_t>(models) << kMixTableBits,
+    /// kMixMaxModels hashed context models; `base`: the coder's table of
+    /// primary contexts (a decision's slot is its primary context's index in it).
+    explicit MixPredictor(const Prob* base)
+        : base_(base),
+          tables_(static_cast<mixdetail::HashedProb*>(std::calloc(static_cast<std::size_t>(n_) << kMixTableBits,
                                                         sizeof(mixdetail::HashedProb)))),
           apm_(static_cast<std::size_t>(kApmRows) * 33) {
         if (!tables_) throw std::bad_alloc();
@@ -119,7 +119,7 @@ public:
                 static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
     }
 
-    /// The context of hashed model k (0 <= k < models) until it is set again.
+    /// The context of hashed model k (0 <= k < kMixMaxModels) until it is set again.
     void set_context(int k, std::uint64_t v) noexcept {
         hash_[static_cast<std::size_t>(k)] = (v + static_cast<std::uint64_t>(k + 1)) * kHashA;
     }
@@ -203,7 +203,7 @@ private:
     static constexpr int kApmRate = 7;
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
-    int n_;
+    static constexpr int n_ = kMixMaxModels;
     const Prob* base_;
     std::unique_ptr<mixdetail::HashedProb[], mixdetail::FreeDeleter> tables_;  // calloc: pages on first touch
     std::vector<std::uint16_t> apm_;

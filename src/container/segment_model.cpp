@@ -233,8 +233,9 @@ public:
         : io_(io), p_(p), axes_(axes), timed_(timed), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
         succ_.resize(1);  // succ_[0]: after no segment
         if constexpr (kMixedIo<Io>) {
+            static_assert(kSegmentMixModels == kMixMaxModels);
             static_assert(sizeof(Contexts) % sizeof(Prob) == 0);
-            mixer_ = std::make_unique<MixPredictor>(kSegmentMixModels, reinterpret_cast<const Prob*>(ctx_.get()));
+            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()));
             io_.m = mixer_.get();
         }
     }

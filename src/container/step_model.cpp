@@ -251,8 +251,9 @@ public:
           predict_starts_(predict_starts), own_(shared ? nullptr : std::make_unique<StepHistory>()),
           h_(shared ? *shared : *own_) {
         if constexpr (kMixedIo<Io>) {
+            static_assert(kStepMixModels == kMixMaxModels);
             static_assert(sizeof(StepContexts) % sizeof(Prob) == 0);
-            mixer_ = std::make_unique<MixPredictor>(kStepMixModels, reinterpret_cast<const Prob*>(ctx_.get()));
+            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()));
             io_.m = mixer_.get();
         }
     }
