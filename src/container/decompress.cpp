@@ -7,6 +7,7 @@
 // before it is checked against the limits in container.hpp.
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -319,11 +320,16 @@ private:
                 // start_history() takes its symbols if a block ever needs them.
                 if (steps_frame_ && !steps_) held_block = std::move(block);
             }
-            if (steps_frame_ && !steps_) {
-                held_.push_back(Held{contribution, std::move(held_block)});
-                if (held_.size() > kMaxWindowBlocks) held_.pop_front();
-            }
+            if (steps_frame_ && !steps_) held_.push_back(Held{contribution, std::move(held_block)});
             window_.push(std::move(contribution));
+            if (!held_.empty()) {
+                // Only the window's blocks are held (it drops the oldest first).
+                const WindowView now = window_.view();
+                while (!held_.empty() && std::none_of(now.begin(), now.end(), [&](const auto& b) {
+                           return b.get() == held_.front().contribution.get();
+                       }))
+                    held_.pop_front();
+            }
             if (out_) {
                 XXH64_update(state_, rendered.data(), rendered.size());
                 if (auto r = (*out_)(rendered); !r) return r;
