@@ -1,7 +1,8 @@
 // Format version 2 (docs/FORMAT.md): the window across blocks finds repeats
 // farther than a block but not farther than the declared window, the bytes
 // do not depend on the thread count, a block that uses a window the frame
-// does not declare is refused; frames back to back decode as one stream;
+// does not declare is refused; a step-model block decodes on the steps
+// of earlier blocks of other types; frames back to back decode as one stream;
 // the fixed overhead of a frame is small.
 #include <gtest/gtest.h>
 
@@ -107,6 +108,36 @@ TEST(ContainerWindow, ALongStreamOfRepeatsDecodesAsTheWindowSays) {
     auto info = inspect_stream(stz::memory_reader(windowed));
     ASSERT_TRUE(info.ok()) << info.error().message;
     EXPECT_GT(info->step_model_blocks, 10u);
+}
+
+TEST(ContainerWindow, AStepModelBlockAfterBlocksOfOtherTypesFindsTheirSteps) {
+    // Plotter-like chains (segment items) around noisy chains that come
+    // again later: the decoder holds the earlier blocks until the first
+    // step-model block flagged window needs their symbols.
+    const std::string noisy = chains_text(7, 40, true);
+    std::vector<Chain> lines(10);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        lines[i].start = {static_cast<std::int64_t>(i) * 7, 0};
+        for (int run = 0; run < 4; ++run)  // long straight runs: few segments
+            lines[i].steps.insert(lines[i].steps.end(), 150 + 40 * static_cast<std::size_t>(run),
+                                  freeman_to_step(static_cast<int>(i) + run * 2));
+    }
+    auto plot = write_chains(InputFormat::freeman, lines);
+    ASSERT_TRUE(plot.ok());
+    const std::string input = *plot + noisy + *plot + noisy;
+    CompressOptions opt;
+    opt.block_steps = 2048;
+    opt.level = 3;
+    opt.window_log = 0;
+    const std::string none = must_compress(input, opt);
+    opt.window_log = 15;
+    const std::string windowed = must_compress(input, opt);
+    ASSERT_FALSE(none.empty());
+    EXPECT_LT(windowed.size() * 10, none.size() * 9) << windowed.size() << " vs " << none.size();
+    auto info = inspect_stream(stz::memory_reader(windowed));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_GT(info->step_model_blocks, 0u);
+    EXPECT_GT(info->table_blocks + info->segment_model_blocks, 0u);
 }
 
 TEST(ContainerWindow, ThreadCountDoesNotChangeTheBytes) {

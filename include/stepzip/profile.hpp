@@ -6,8 +6,10 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "stepzip/error.hpp"
@@ -34,16 +36,28 @@ std::string_view profile_name(Profile p) noexcept;
 /// Parses a profile name; nullopt for an unknown name.
 std::optional<Profile> parse_profile(std::string_view name) noexcept;
 /// True for the 8-connected leading-axis profiles (eval8, grbl, marlin).
-bool profile_eight_connected(Profile p) noexcept;
+inline bool profile_eight_connected(Profile p) noexcept {
+    return p == Profile::eval8 || p == Profile::grbl || p == Profile::marlin;
+}
 /// Largest axis count the profile supports (2 for eval4 and patent, else 6).
-int profile_max_axes(Profile p) noexcept;
+inline int profile_max_axes(Profile p) noexcept { return profile_eight_connected(p) ? kMaxAxes : 2; }
 
 /// The default phase of one evaluation function of a segment.
 /// For eval4 and patent (a, b) = (|dx|, |dy|); for the leading-axis profiles
 /// (a, b) = (L, S), the leading and the minor total.
 ///   eval4: 0   patent: b - a   eval8: 0
 ///   grbl: ceil(L/2) - S        marlin: ceil(L/2) - S - 1
-std::int64_t default_phase(Profile p, std::int64_t a, std::int64_t b) noexcept;
+inline std::int64_t default_phase(Profile p, std::int64_t a, std::int64_t b) noexcept {
+    const std::int64_t ceil_half = a / 2 + (a & 1);  // ceil(a / 2) for a >= 0, without overflow
+    switch (p) {
+        case Profile::eval4:
+        case Profile::eval8: return 0;
+        case Profile::patent: return b - a;
+        case Profile::grbl: return ceil_half - b;
+        case Profile::marlin: return ceil_half - b - 1;
+    }
+    return 0;
+}
 
 /// Half-open range [lo, hi) of phases a segment may carry for one evaluation
 /// function; every step pattern the function can produce is produced by a
@@ -58,16 +72,34 @@ struct PhaseRange {
     std::int64_t hi = 1;
     bool contains(std::int64_t f) const noexcept { return lo <= f && f < hi; }
 };
-PhaseRange phase_range(Profile p, std::int64_t a, std::int64_t b) noexcept;
-
-/// The (a, b) arguments of evaluation function j of `seg` (see default_phase),
-/// or nullopt when j is past the segment's functions.
-std::optional<std::pair<std::int64_t, std::int64_t>> phase_arguments(Profile p, const Segment& seg,
-                                                                     int axes, int j) noexcept;
+inline PhaseRange phase_range(Profile p, std::int64_t a, std::int64_t b) noexcept {
+    // A function decides nothing when one letter of its two-letter pattern is absent.
+    const bool degenerate = profile_eight_connected(p) ? (b == 0 || b == a) : (a == 0 || b == 0);
+    if (degenerate) {
+        const std::int64_t d = default_phase(p, a, b);
+        return {d, d + 1};
+    }
+    switch (p) {
+        case Profile::eval4: return {-b, a};
+        case Profile::patent: return {b - a - a * b, b - a + a * b + 1};
+        default: return {-b, a - b};
+    }
+}
 
 /// Number of evaluation functions (phases) a segment has under the profile:
 /// 1 for eval4/patent, axes - 1 for the leading-axis profiles.
-int phase_count(Profile p, int axes) noexcept;
+inline int phase_count(Profile p, int axes) noexcept { return profile_eight_connected(p) ? axes - 1 : 1; }
+
+/// The (a, b) arguments of evaluation function j of `seg` (see default_phase),
+/// or nullopt when j is past the segment's functions.
+inline std::optional<std::pair<std::int64_t, std::int64_t>> phase_arguments(Profile p, const Segment& seg,
+                                                                            int axes, int j) noexcept {
+    if (j < 0 || j >= phase_count(p, axes)) return std::nullopt;
+    if (!profile_eight_connected(p)) return std::pair{std::llabs(seg.delta[0]), std::llabs(seg.delta[1])};
+    const int lead = leading_axis(seg.delta, axes);
+    const int axis = j < lead ? j : j + 1;
+    return std::pair{std::llabs(seg.delta[lead]), std::llabs(seg.delta[axis])};
+}
 
 /// A segment with every phase set to the profile's default.
 Segment default_segment(Profile p, const Point& delta, int axes) noexcept;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 
 #include "stepzip/step.hpp"
 
@@ -28,10 +29,22 @@ struct Segment {
 
 /// The leading axis of `delta`: the lowest-index axis with the largest |total|.
 /// Thread-safe (as are all functions in this header).
-int leading_axis(const Point& delta, int axes) noexcept;
+inline int leading_axis(const Point& delta, int axes) noexcept {
+    int lead = 0;
+    for (int i = 1; i < axes; ++i)
+        if (std::llabs(delta[i]) > std::llabs(delta[lead])) lead = i;
+    return lead;
+}
 
 /// Number of steps (ticks) in the segment under a 4-connected profile
 /// (sum of |totals|) or an 8-connected one (max |total|).
-std::int64_t segment_length(const Point& delta, int axes, bool eight_connected) noexcept;
+inline std::int64_t segment_length(const Point& delta, int axes, bool eight_connected) noexcept {
+    std::int64_t n = 0;
+    for (int i = 0; i < axes; ++i) {
+        const std::int64_t v = std::llabs(delta[i]);
+        n = eight_connected ? (v > n ? v : n) : n + v;
+    }
+    return n;
+}
 
 }  // namespace stepzip

@@ -7,6 +7,7 @@
 // before it is checked against the limits in container.hpp.
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -244,6 +245,7 @@ private:
                 step_history_begin_block(*steps_, view.empty() ? end : view.front()->first_symbol, window_.limit());
             }
             bool on_history = false;  // the block's symbols went into steps_ as it was decoded
+            Block held_block;         // kept for start_history() (raw blocks: none)
             rendered.clear();
             ++info_.blocks;
             if (b.type == kRaw) {
@@ -313,13 +315,10 @@ private:
                 if (block.continues && chain_open_ && counts.chains > 0) --info_.chains;
                 chain_open_ = block.open;
                 contribution->weight = counts.steps + counts.chains;
-                if (steps_frame_ && !on_history) {
+                if (steps_ && !on_history) {
                     add_steps(*contribution, block);
-                    if (steps_) step_history_add(*steps_, *contribution);
-                }
-                // Once the history holds the symbols, the window keeps their
-                // place only; before, it keeps them for start_history().
-                if (steps_) {
+                    step_history_add(*steps_, *contribution);
+                    // The history holds the symbols: the window keeps their place only.
                     contribution->symbols = {};
                     contribution->starts = {};
                 }
@@ -328,12 +327,20 @@ private:
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
                     info_.decoded_bytes += rendered.size();
                 }
+                // Before the history exists the decoded block itself is held:
+                // start_history() takes its symbols if a block ever needs them.
+                if (steps_frame_ && !steps_) held_block = std::move(block);
             }
-            if (steps_frame_ && !steps_) {
-                held_.push_back(contribution);
-                if (held_.size() > kMaxWindowBlocks) held_.pop_front();
-            }
+            if (steps_frame_ && !steps_) held_.push_back(Held{contribution, std::move(held_block)});
             window_.push(std::move(contribution));
+            if (!held_.empty()) {
+                // Only the window's blocks are held (it drops the oldest first).
+                const WindowView now = window_.view();
+                while (!held_.empty() && std::none_of(now.begin(), now.end(), [&](const auto& b) {
+                           return b.get() == held_.front().contribution.get();
+                       }))
+                    held_.pop_front();
+            }
             if (out_) {
                 XXH64_update(state_, rendered.data(), rendered.size());
                 if (auto r = (*out_)(rendered); !r) return r;
@@ -350,14 +357,16 @@ private:
     void start_history(const WindowView& view) {
         steps_ = make_step_history();
         for (const auto& c : view) {
-            WindowBlock* held = nullptr;
-            for (const auto& h : held_)
-                if (h.get() == c.get()) held = h.get();
+            Held* held = nullptr;
+            for (auto& h : held_)
+                if (h.contribution.get() == c.get()) held = &h;
             if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
-            held->first_symbol = step_history_end(*steps_);
-            step_history_add(*steps_, *held);
-            held->symbols = {};
-            held->starts = {};
+            WindowBlock& w = *held->contribution;
+            w.first_symbol = step_history_end(*steps_);
+            add_steps(w, held->block);
+            step_history_add(*steps_, w);
+            w.symbols = {};
+            w.starts = {};
         }
         held_.clear();
     }
@@ -460,7 +469,13 @@ private:
     Window window_;
     StepHistoryPtr steps_;  // frames with a window on two axes, once a block needs it
     bool steps_frame_ = false;  // a frame with a window on two axes
-    std::deque<std::shared_ptr<WindowBlock>> held_;  // before steps_: the window's blocks
+    // Before steps_: the window's blocks with their decoded chains (their
+    // symbols are made only if a block decodes on the history).
+    struct Held {
+        std::shared_ptr<WindowBlock> contribution;
+        Block block;
+    };
+    std::deque<Held> held_;
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;

@@ -11,7 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <deque>
+#include <memory>
 #include <numeric>
 
 #include "../common/bytes.hpp"
@@ -139,6 +139,27 @@ private:
 
 using SuccList = MtfList<kSucc>;
 
+// Segments that never move once stored, in chunks of 64, 128, ... 4096
+// (a deque's nodes hold five segments each: an allocation per five).
+class SegmentStore {
+public:
+    const Segment& push_back(const Segment& s) {
+        if (used_ == size_) {
+            size_ = std::min<std::size_t>(kMaxChunk, std::size_t{64} << std::min<std::size_t>(chunks_.size(), 6));
+            chunks_.push_back(std::make_unique_for_overwrite<Segment[]>(size_));
+            used_ = 0;
+        }
+        Segment& at = chunks_.back()[used_++];
+        at = s;
+        return at;
+    }
+
+private:
+    static constexpr std::size_t kMaxChunk = 4096;
+    std::vector<std::unique_ptr<Segment[]>> chunks_;
+    std::size_t used_ = 0, size_ = 0;
+};
+
 // Canonical form of a segment: degenerate phases at their only value,
 // unused phases zero (as the decoder rebuilds it).
 Segment canonical(Profile p, const Segment& s, int axes) {
@@ -167,7 +188,7 @@ public:
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
     std::vector<const Segment*> segs_;  // into own_ or the window's items
-    std::deque<Segment> own_;
+    SegmentStore own_;
     std::vector<Point> starts_;
     std::vector<std::uint32_t> hist_;
     // Shapes: id -> index in segs_ of the segment coded in full.
@@ -204,8 +225,7 @@ public:
                 starts_.push_back(w.starts[c]);
                 hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
                 for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    if (canon) own_.push_back(canonical(p_, w.segments[k], axes_));
-                    segs_.push_back(canon ? &own_.back() : &w.segments[k]);
+                    segs_.push_back(canon ? &own_.push_back(canonical(p_, w.segments[k], axes_)) : &w.segments[k]);
                     hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
                 }
                 hist_.push_back(kEndTag);
@@ -275,8 +295,7 @@ public:
     }
 
     void push_seg(const Segment& seg) {
-        own_.push_back(seg);
-        segs_.push_back(&own_.back());
+        segs_.push_back(&own_.push_back(seg));
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         note_fields(seg);
     }

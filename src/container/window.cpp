@@ -1,6 +1,8 @@
 // Contributions of a block to the window (docs/FORMAT.md "Window").
 #include "window.hpp"
 
+#include <array>
+
 #include "../common/bytes.hpp"
 
 namespace stepzip::stz {
@@ -8,17 +10,30 @@ namespace stepzip::stz {
 std::vector<std::uint8_t> step_symbols(const Block& block) {
     std::vector<std::uint8_t> out;
     if (block.axes != 2) return out;
+    // Freeman code of each step value below 16 (step_to_freeman()), 0xFF
+    // where it is none; steps of 16 and above are never two-axis steps.
+    static constexpr auto kCode = [] {
+        std::array<std::uint8_t, 16> t{};
+        for (unsigned v = 0; v < 16; ++v) {
+            const int c = step_to_freeman(static_cast<Step>(v));
+            t[v] = c < 0 ? 0xFF : static_cast<std::uint8_t>(c);
+        }
+        return t;
+    }();
     std::size_t n = 0;
     for (const Chain& c : block.chains) n += c.steps.size() + 1;
-    out.reserve(n);
+    out.resize(n);
+    std::uint8_t* o = out.data();
+    unsigned bad = 0;  // bit 7 and above: a step with no Freeman code
     for (const Chain& c : block.chains) {
         for (Step s : c.steps) {
-            const int code = step_to_freeman(s);
-            if (code < 0) return {};
-            out.push_back(static_cast<std::uint8_t>(code));
+            const std::uint8_t code = kCode[s & 15u];
+            bad |= code | (static_cast<unsigned>(s >> 4) << 7);
+            *o++ = code;
         }
-        out.push_back(8);
+        *o++ = 8;
     }
+    if (bad & ~127u) return {};
     return out;
 }
 

@@ -82,20 +82,4 @@ std::vector<Point> chain_points(const Chain& chain) {
     return pts;
 }
 
-int leading_axis(const Point& delta, int axes) noexcept {
-    int lead = 0;
-    for (int i = 1; i < axes; ++i)
-        if (std::llabs(delta[i]) > std::llabs(delta[lead])) lead = i;
-    return lead;
-}
-
-std::int64_t segment_length(const Point& delta, int axes, bool eight_connected) noexcept {
-    std::int64_t n = 0;
-    for (int i = 0; i < axes; ++i) {
-        const std::int64_t v = std::llabs(delta[i]);
-        n = eight_connected ? (v > n ? v : n) : n + v;
-    }
-    return n;
-}
-
 }  // namespace stepzip

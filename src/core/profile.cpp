@@ -23,55 +23,6 @@ std::optional<Profile> parse_profile(std::string_view name) noexcept {
     return std::nullopt;
 }
 
-bool profile_eight_connected(Profile p) noexcept {
-    return p == Profile::eval8 || p == Profile::grbl || p == Profile::marlin;
-}
-
-int profile_max_axes(Profile p) noexcept { return profile_eight_connected(p) ? kMaxAxes : 2; }
-
-int phase_count(Profile p, int axes) noexcept { return profile_eight_connected(p) ? axes - 1 : 1; }
-
-namespace {
-// ceil(l / 2) for l >= 0, without overflow at INT64_MAX.
-std::int64_t ceil_half(std::int64_t l) { return l / 2 + (l & 1); }
-// A function decides nothing when one letter of its two-letter pattern is absent.
-bool degenerate(Profile p, std::int64_t a, std::int64_t b) {
-    return profile_eight_connected(p) ? (b == 0 || b == a) : (a == 0 || b == 0);
-}
-}  // namespace
-
-std::int64_t default_phase(Profile p, std::int64_t a, std::int64_t b) noexcept {
-    switch (p) {
-        case Profile::eval4:
-        case Profile::eval8: return 0;
-        case Profile::patent: return b - a;
-        case Profile::grbl: return ceil_half(a) - b;
-        case Profile::marlin: return ceil_half(a) - b - 1;
-    }
-    return 0;
-}
-
-PhaseRange phase_range(Profile p, std::int64_t a, std::int64_t b) noexcept {
-    if (degenerate(p, a, b)) {
-        const std::int64_t d = default_phase(p, a, b);
-        return {d, d + 1};
-    }
-    switch (p) {
-        case Profile::eval4: return {-b, a};
-        case Profile::patent: return {b - a - a * b, b - a + a * b + 1};
-        default: return {-b, a - b};
-    }
-}
-
-std::optional<std::pair<std::int64_t, std::int64_t>> phase_arguments(Profile p, const Segment& seg,
-                                                                     int axes, int j) noexcept {
-    if (j < 0 || j >= phase_count(p, axes)) return std::nullopt;
-    if (!profile_eight_connected(p)) return std::pair{std::llabs(seg.delta[0]), std::llabs(seg.delta[1])};
-    const int lead = leading_axis(seg.delta, axes);
-    const int axis = j < lead ? j : j + 1;
-    return std::pair{std::llabs(seg.delta[lead]), std::llabs(seg.delta[axis])};
-}
-
 Segment default_segment(Profile p, const Point& delta, int axes) noexcept {
     Segment seg;
     seg.delta = delta;
