@@ -110,6 +110,18 @@ bool short_correction(ArcMethod method) {
            method == ArcMethod::double_recursion;
 }
 
+// Whether interpolate_arc accepts the end (x1, y1) of an arc from (x0, y0)
+// about the origin (its check_arc, in the same arithmetic): both within
+// kMaxInterpolateCoord, neither at the centre, |end| within max(2, R/8) of R.
+bool arc_end_accepted(std::int64_t x0, std::int64_t y0, std::int64_t x1, std::int64_t y1) {
+    for (std::int64_t c : {x0, y0, x1, y1})
+        if (c < -kMaxInterpolateCoord || c > kMaxInterpolateCoord) return false;
+    if ((x0 == 0 && y0 == 0) || (x1 == 0 && y1 == 0)) return false;
+    const double r = std::sqrt(static_cast<double>(x0 * x0 + y0 * y0));
+    const double re = std::sqrt(static_cast<double>(x1 * x1 + y1 * y1));
+    return !(std::fabs(re - r) > std::fmax(2.0, r / 8));
+}
+
 struct AboutResult {
     std::size_t length = 0;
     std::size_t bound = 0;  // the largest end tried
@@ -174,6 +186,9 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
                                                     static_cast<double>(ey)) - r);
             if (k > base + 2 * static_cast<std::size_t>(std::ceil(off)) + kArcTail) continue;
         }
+        // interpolate_arc's own refusal, checked first: a refused end costs
+        // no error message.
+        if (!arc_end_accepted(sx, sy, ex, ey)) continue;
         scratch.clear();
         if (!interpolate_arc(method, sx, sy, ex, ey, ccw, scratch)) continue;
         if (scratch.size() == k && std::equal(scratch.begin(), scratch.end(), steps.begin())) {
