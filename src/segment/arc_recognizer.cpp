@@ -18,8 +18,9 @@
 //    full circle's path from the same start until an end counter of the last
 //    quadrant piece runs out near the end, so a reproduced prefix agrees with
 //    the full circle but for the same tail (after a counter runs out, one
-//    axis moves alone, then the correction run). For a short arc a
-//    quarter-turn longer arc stands in for the full circle (cheaper).
+//    axis moves alone, then the correction run). For an arc shorter than
+//    2R steps a quarter-turn longer arc stands in for the full circle
+//    (cheaper).
 // Invariant: longest_arc_about returns 0 or a verified length; every length
 // it skips lies beyond one of the two bounds (tested against a brute-force
 // search over every end, tests/segment_arc_test.cpp).
@@ -150,14 +151,34 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
     std::size_t base = run_end(steps, band, n);
     const auto tail = static_cast<std::size_t>(tail_allowance(r));
     if (std::min(n, base + tail) <= floor) return res;
+    const bool per_end = near_ends || short_correction(method);
+    // An end k worth drawing: within the end allowance of its own distance
+    // from the circle (per_end) and one interpolate_arc accepts.
+    auto end_may = [&](std::size_t k, std::size_t b) {
+        const std::int64_t ex = pts[k].first - cx, ey = pts[k].second - cy;
+        if (per_end) {
+            const double off = std::fabs(std::hypot(static_cast<double>(ex),
+                                                    static_cast<double>(ey)) - r);
+            if (k > b + 2 * static_cast<std::size_t>(std::ceil(off)) + kArcTail) return false;
+        }
+        return arc_end_accepted(sx, sy, ex, ey);
+    };
+    // No end worth drawing under the band's bound (which the agreement below
+    // can only lower): nothing to draw, not even the reference.
+    {
+        std::size_t k = std::min(n, base + tail);
+        while (k > floor && !end_may(k, base)) --k;
+        if (k == floor) return res;
+    }
     if (method != ArcMethod::double_recursion) {
-        // The reference: the full circle, or for an arc shorter than R
-        // (a sweep under one radian) the arc to p_upper turned a quarter
-        // further, whose pieces up to p_upper's quadrant are the full
-        // circle's (p_upper's quadrant is not its last piece).
+        // The reference: the full circle, or for an arc shorter than 2R
+        // steps (a sweep under about 2.9 radians, as a step is at most
+        // sqrt(2) long) the arc to p_upper turned a quarter further, which
+        // stays under a full turn and whose pieces up to p_upper's quadrant
+        // are the full circle's (p_upper's quadrant is not its last piece).
         const std::size_t upper = std::min(n, base + tail);
         std::int64_t rx = sx, ry = sy;
-        if (static_cast<double>(upper) < r) {
+        if (static_cast<double>(upper) < 2 * r) {
             const auto ux = static_cast<double>(pts[upper].first - cx);
             const auto uy = static_cast<double>(pts[upper].second - cy);
             const double u = std::hypot(ux, uy);
@@ -178,17 +199,11 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
     }
     const std::size_t upper = std::min(n, base + tail);
     res.bound = upper;
-    const bool per_end = near_ends || short_correction(method);
     for (std::size_t k = upper; k > floor; --k) {
+        // interpolate_arc's own refusal is checked first (by end_may): a
+        // refused end costs no error message.
+        if (!end_may(k, base)) continue;
         const std::int64_t ex = pts[k].first - cx, ey = pts[k].second - cy;
-        if (per_end) {
-            const double off = std::fabs(std::hypot(static_cast<double>(ex),
-                                                    static_cast<double>(ey)) - r);
-            if (k > base + 2 * static_cast<std::size_t>(std::ceil(off)) + kArcTail) continue;
-        }
-        // interpolate_arc's own refusal, checked first: a refused end costs
-        // no error message.
-        if (!arc_end_accepted(sx, sy, ex, ey)) continue;
         scratch.clear();
         if (!interpolate_arc(method, sx, sy, ex, ey, ccw, scratch)) continue;
         if (scratch.size() == k && std::equal(scratch.begin(), scratch.end(), steps.begin())) {
@@ -327,7 +342,20 @@ ArcFit longest_arc(ArcMethod method, std::span<const Step> steps,
             const std::size_t floor = std::max(best.length, min_len - 1);
             if (run_bound(steps, c.band, n, r) <= floor) continue;
             if (options.max_drawn > 0 && ++drawn > options.max_drawn) break;
+            // One direction only (options.one_direction): the one the band's
+            // points turn in about c, seen at a point at most R steps on
+            // (a sweep under pi), when they turn clearly.
+            int turn = 0;
+            if (options.one_direction) {
+                const std::size_t j = std::min<std::size_t>(c.band, static_cast<std::size_t>(r));
+                if (j >= 2) {
+                    const std::int64_t qx = pts[j].first - c.cx, qy = pts[j].second - c.cy;
+                    const std::int64_t cross = -c.cx * qy + c.cy * qx;
+                    turn = cross > 0 ? 1 : cross < 0 ? -1 : 0;
+                }
+            }
             for (bool ccw : {true, false}) {
+                if ((turn > 0 && !ccw) || (turn < 0 && ccw)) continue;
                 const std::size_t fl = std::max(best.length, min_len - 1);
                 const auto res = about(method, steps, pts, c.cx, c.cy, ccw, fl, scratch, c.band,
                                        options.near_ends);
