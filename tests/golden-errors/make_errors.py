@@ -238,6 +238,38 @@ files.update({
     # A byte after the extra bits: every bit is read where the payload ended.
     'v2_table_extra_byte': ('corrupt', whereT % len(payloadT), table_block(payloadT + b'\x00')),
 })
+# Arc items (docs/FORMAT.md 1.10.1), from tests/golden/v2/arcs_eval.fc.stz:
+# one table block that codes arcs (table-set bit 53, then the method byte).
+goodA = open(os.path.join(here, '..', 'golden', 'v2', 'arcs_eval.fc.stz'), 'rb').read()
+assert goodA[4] == 2 and goodA[8] & 7 == 5, 'v2/arcs_eval.fc.stz should start with a table block'
+csizeA, payA = varint_at(goodA, 9)
+endA = payA + csizeA
+payloadA = goodA[payA:endA]
+
+
+def arc_block(payload):
+    """goodA with its first block's payload replaced (size and checksum redone)."""
+    body = goodA[8:9] + put_varint(len(payload)) + payload
+    return goodA[:8] + body + struct.pack('<I', check32(body)) + goodA[endA + 4:]
+
+
+at = 0
+for _ in range(4):  # nchains, nsegments, nsteps, grid
+    _, at = varint_at(payloadA, at)
+_, at = varint_at(payloadA, at)  # layout size
+stored, at = varint_at(payloadA, at)
+at += stored
+set_atA = at
+table_setA, method_atA = varint_at(payloadA, at)
+assert (table_setA >> 53) & 1 and payloadA[method_atA] == 0, 'arcs_eval: an arc block of method evaluation'
+files.update({
+    # Arc method 5: no such method.
+    'v2_arc_method': ('corrupt', whereT % method_atA,
+                      arc_block(payloadA[:method_atA] + b'\x05' + payloadA[method_atA + 1:])),
+    # The arc flag (bit 53) cleared: the arc tables (bits 50-52) without it.
+    'v2_arc_flag': ('corrupt', whereT % set_atA,
+                    arc_block(payloadA[:set_atA] + put_varint(table_setA & ~(1 << 53)) + payloadA[method_atA:])),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')
