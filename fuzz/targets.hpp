@@ -24,6 +24,8 @@
 #include "stepzip/segment/arc.hpp"
 #include "stepzip/segmenter.hpp"
 #include "stepzip/vectors.hpp"
+#include "../src/container/arc_items.hpp"
+#include "../src/container/table_block.hpp"
 
 namespace stepzip::fuzz {
 
@@ -378,7 +380,8 @@ inline std::string roundtrip_target(const std::uint8_t* data, std::size_t size) 
 /// its first steps, and longest_arc_about at its centre finds it too; for a
 /// drawn arc, longest_arc_about about the true centre finds at least the
 /// drawn steps; cut_arcs_and_lines' moves (eval4 lines for the 4-connected
-/// methods, eval8 for the others) draw exactly the steps. At most 240 steps.
+/// methods, eval8 for the others) draw exactly the steps, and as a table
+/// block with arc items they decode to them. At most 240 steps.
 inline std::string arc_target(const std::uint8_t* data, std::size_t size) {
     if (size < 1) return {};
     static constexpr ArcMethod kMethods[] = {ArcMethod::evaluation, ArcMethod::accelerated,
@@ -439,6 +442,26 @@ inline std::string arc_target(const std::uint8_t* data, std::size_t size) {
             }
         }
         if (back != steps) return "cut_arcs_and_lines: the moves do not draw the steps";
+
+        // The container with arc items: these moves as a table block decode
+        // to the chain (whether or not compress would keep that block), when
+        // every arc's step bound fits the block (else the format refuses it).
+        Chain chain;
+        chain.axes = 2;
+        chain.steps = steps;
+        Block block;
+        block.axes = 2;
+        block.chains = {chain};
+        std::vector<std::vector<Segment>> cut(1);
+        for (const ArcCutMove& mv : moves) {
+            if (mv.is_arc && stz::arc_step_bound(mv.arc.cx, mv.arc.cy) > steps.size()) return {};
+            cut[0].push_back(mv.is_arc ? stz::arc_item(mv.arc, m) : mv.line);
+        }
+        Block decoded;
+        stz::BlockCounts counts;
+        if (auto r = stz::read_table_block(stz::write_table_block(block, p, cut), p, 2, true, decoded, counts, "fuzz");
+            !r || decoded.chains != block.chains)
+            return "a table block with arc items does not decode to its chain";
     }
     return {};
 }

@@ -23,6 +23,7 @@
 
 #include "stepzip/document.hpp"
 #include "stepzip/error.hpp"
+#include "stepzip/interpolate/arc.hpp"
 #include "stepzip/profile.hpp"
 #include "stepzip/segmenter.hpp"
 
@@ -67,6 +68,10 @@ struct CompressOptions {
     /// (0: blocks independent; at most kMaxWindowLog); nullopt: set by the
     /// level (docs/FORMAT.md "Encoder behaviour").
     std::optional<int> window_log;
+    /// Two-axis chains: also cut each block into arcs drawn by this method
+    /// and default-phase lines, and keep that table block where it is
+    /// smaller (docs/FORMAT.md 1.10.1); nullopt: lines only.
+    std::optional<ArcMethod> arc_method;
 };
 
 /// What a frame holds; filled by compress_stream(), decompress_stream() and

@@ -69,13 +69,14 @@ int cmd_compress(const std::vector<std::string>& args) {
     a.command = "compress";
     a.binary_output = true;
     CompressOptions opt;
-    std::string profile = "auto", segmenter, format;
+    std::string profile = "auto", segmenter, format, arc_arg;
     int level = 3;
     unsigned threads = 1;
     std::size_t block_steps = kDefaultBlockSteps;
     po::options_description desc(
         "Usage: stepzip compress [INPUT... | -] [-o OUT] [-c] [-f] [-k|--rm] [-r] [--profile P]\n"
         "                        [--segmenter greedy|optimal|patent] [-L LEVEL|-#] [-T N] [-q|-v]\n"
+        "                        [--arc-method M]\n"
         "       stepzip [-z] ...    (zstd's form: no command compresses)\n"
         "Compresses chain files (freeman, points, steps) into .stz; every block's round trip\n"
         "is proved before it is written. FILE -> FILE.stz (mode, owner and times kept);\n"
@@ -104,6 +105,10 @@ int cmd_compress(const std::vector<std::string>& args) {
                                            "output does not depend on N")
         ("format", po::value(&format), "freeman|points|steps|timed (default: detected; timed: a steps log read with time as axis 0)")
         ("block-size", po::value(&block_steps), "steps per block (default 1048576)")
+        ("arc-method", po::value(&arc_arg),
+         "two-axis chains: also code circular arcs drawn by M (evaluation, accelerated, dda, "
+         "prediction, recursion; as `interpolate --arc-method`) where that is smaller; default: "
+         "lines only (the arc search is slow, see docs/cli.md)")
         ("no-raw", "never carry a block as plain zstd of its bytes, even when smaller")
         ("quiet,q", po::bool_switch(&a.quiet), "no messages but errors")
         ("verbose,v", po::bool_switch(&a.verbose), "print a summary line per input: ratio, sizes, "
@@ -128,6 +133,11 @@ int cmd_compress(const std::vector<std::string>& args) {
     if (!format.empty()) {
         opt.format = parse_format(format);
         if (!opt.format) return usage_error("compress: unknown format '" + format + "'");
+    }
+    if (!arc_arg.empty()) {
+        opt.arc_method = parse_arc_method(arc_arg);
+        if (!opt.arc_method) return usage_error("compress: unknown arc method '" + arc_arg + "'");
+        if (opt.format == InputFormat::timed) return usage_error("compress: --arc-method does not go with --format timed");
     }
     if (level < 1 || level > 19) return usage_error("compress: -L must be 1..19");
     if (block_steps < 1 || block_steps > kMaxBlockSteps)

@@ -4,6 +4,7 @@
 // a modeled block again from the window.
 #include <algorithm>
 
+#include "arc_items.hpp"
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
@@ -366,6 +367,18 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
             if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
                 job.cut = segs;
+        }
+        // Lines and arcs (--arc-method): the arc cut's table block, at every
+        // level, kept when smaller than every other encoding tried.
+        if (s.arc_method && !s.timed && block.axes == 2) {
+            Cut arcs;
+            if (auto r = arc_block_cut(block, s.profile, *s.arc_method, arcs, job.first_chain, s.source); !r) {
+                job.error = std::move(r).error();
+                return;
+            }
+            const std::string table = write_table_block(block, s.profile, arcs, table_effort(s.level));
+            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
+                job.cut = std::move(arcs);
         }
         // The fast levels code small blocks by the segment model too: its
         // adaptive contexts need no tables (a table block's fixed cost), and

@@ -93,6 +93,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     s.allow_raw = opt.allow_raw;
     s.thorough = opt.level >= kThoroughLevel;
     s.window_log = opt.window_log.value_or(window_log_for_level(opt.level));
+    s.arc_method = opt.arc_method;
 
     FrameInfo info;
     info.segmenter = s.segmenter;

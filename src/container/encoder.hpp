@@ -7,10 +7,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "block_codec.hpp"
+#include "stepzip/interpolate/arc.hpp"
 #include "table_block.hpp"
 #include "window.hpp"
 
@@ -45,6 +47,7 @@ struct EncoderSettings {
     bool aligned_cut = false;  ///< below thorough: the default-phase cut won on the first block's sample
     int window_log = 0;        ///< the frame's window (0: none)
     bool timed = false;        ///< input format timed: segment-model phases predicted
+    std::optional<ArcMethod> arc_method;  ///< also try table blocks of lines and arcs drawn by it
 };
 
 /// One block in flight, from the reader to the ordered write.

@@ -249,6 +249,7 @@ public:
     void prime(const WindowView& window) {
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
+            if (w.arcs) continue;  // a table block with arcs: table-block windows only
             std::size_t k = 0;
             for (std::size_t c = 0; c < w.starts.size(); ++c) {
                 push(kStartTag | static_cast<std::uint32_t>(starts_.size()), false);

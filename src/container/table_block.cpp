@@ -15,6 +15,7 @@
 #include <numeric>
 
 #include "../common/bytes.hpp"
+#include "arc_items.hpp"
 #include "modeled_block.hpp"
 #include "mtf_list.hpp"
 #include "segment_fields.hpp"
@@ -35,11 +36,22 @@ constexpr int kTPhase = 34;   // 12: min(bit_length(L), 11)
 constexpr int kTStart = 46;   // 2: axis 0, other axes
 constexpr int kTOffset = 48;  // 1
 constexpr int kTDir = 49;     // 1: N-D direction
-constexpr int kTables = 50;
+// Arc blocks (docs/FORMAT.md 1.10.1): tables 50-52 code the arcs' fields,
+// table-set bit 53 flags the block (no table).
+constexpr int kTArcCentre = 50;  // 1: centre x, y
+constexpr int kTArcSmall = 51;   // 1: the end's smaller coordinate about the centre
+constexpr int kTArcLarge = 52;   // 1: the larger one: residual, axis, sign
+constexpr int kTables = 53;
+constexpr int kTArcFlag = 53;
+constexpr int kLineTables = 50;  // the tables of a block without arcs
 
 // Operation symbols.
 constexpr unsigned kOpEnd = 0, kOpStart = 1, kOpSucc = 2, kOpRec = 6, kOpRecBucket = 14, kOpFull = 28,
                    kOpMatch = 36, kOps = 90;
+// Arc blocks: two more operations, an arc clockwise and counter-clockwise.
+constexpr unsigned kOpArc = 90, kArcOps = 92;
+// Largest zigzag value of an arc field (coordinates up to 2^24).
+constexpr std::uint64_t kMaxArcField = std::uint64_t{1} << 27;
 constexpr unsigned kOffsetBuckets = 3;  // offset symbols: 0..2 repeat offsets, then bucket_of(offset - 1)
 
 // Previous-operation classes (operation-table contexts).
@@ -52,11 +64,20 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 // History entries: kind in the top two bits, index below.
 constexpr std::uint32_t kSegTag = 0u << 30, kStartTag = 1u << 30, kEndTag = 2u << 30, kIndexMask = (1u << 30) - 1;
 
-unsigned alphabet(int t) {
-    if (t < kTLead) return kOps;
+unsigned alphabet(int t, bool arcs) {
+    if (t < kTLead) return arcs ? kArcOps : kOps;
     if (t < kTOffset) return kBuckets;
     if (t == kTOffset) return kOffsetBuckets + kBuckets;
-    return 512;
+    if (t == kTDir) return 512;
+    return kBuckets;
+}
+
+// round(sqrt(q)) for q >= 0, halves up, in exact integer arithmetic.
+std::int64_t round_isqrt(std::int64_t q) {
+    auto r = static_cast<std::int64_t>(std::sqrt(static_cast<double>(q)));
+    while (r > 0 && r * r > q) --r;
+    while ((r + 1) * (r + 1) <= q) ++r;
+    return q - r * r > r ? r + 1 : r;
 }
 
 int cap(int v, int hi) { return v < hi ? v : hi; }
@@ -85,7 +106,7 @@ struct EncSide {
     BitWriter bits;
     bool failed = false;
     EncSide() {
-        for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t), 0);
+        for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t, true), 0);
     }
     unsigned sym(int t, unsigned s) {
         syms.emplace_back(static_cast<std::uint8_t>(t), static_cast<std::uint16_t>(s));
@@ -163,6 +184,7 @@ private:
 // Canonical form of a segment: degenerate phases at their only value,
 // unused phases zero (as the decoder rebuilds it).
 Segment canonical(Profile p, const Segment& s, int axes) {
+    if (is_arc(s, axes)) return s;
     Segment c{};
     c.delta = s.delta;
     for (int j = 0; j < phase_count(p, axes); ++j) {
@@ -204,6 +226,8 @@ public:
     std::array<std::int64_t, kMaxAxes> prev_s_{};
     std::array<std::uint64_t, 3> rep_{1, 2, 3};
     const char* error_ = nullptr;
+    // Arc blocks: the method of the arcs the block codes (-1: none yet).
+    int arc_method_ = -1;
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
@@ -396,6 +420,60 @@ public:
         return true;
     }
 
+    // An arc after its operation (docs/FORMAT.md 1.10.1): the centre from
+    // the start, then the end about the centre, its smaller coordinate in
+    // full and its larger one as the residual from the circle through the
+    // start. Arcs are not shapes; the field contexts stay.
+    bool code_arc(unsigned op, const Segment* want) {
+        Segment arc{};
+        arc.delta[4] = op == kOpArc ? 1 : 2;
+        arc.delta[5] = arc_method_;
+        for (int a = 0; a < 2; ++a) {
+            const std::uint64_t z = code_uint(kTArcCentre, Io::kDecode ? 0 : zig(want->delta[2 + a]));
+            if (io_.failed || z > kMaxArcField) return fail("arc centre out of range");
+            arc.delta[2 + a] = unzig(z);
+        }
+        const std::int64_t cx = arc.delta[2], cy = arc.delta[3];
+        if ((cx == 0 && cy == 0) || std::llabs(cx) > kMaxInterpolateCoord || std::llabs(cy) > kMaxInterpolateCoord)
+            return fail("arc centre out of range");
+        std::int64_t ux = 0, uy = 0;  // the end about the centre (encoder)
+        if constexpr (!Io::kDecode) {
+            ux = want->delta[0] - cx;
+            uy = want->delta[1] - cy;
+        }
+        const bool y_large = std::llabs(uy) > std::llabs(ux);
+        const std::uint64_t zs = code_uint(kTArcSmall, Io::kDecode ? 0 : zig(y_large ? ux : uy));
+        if (io_.failed || zs > kMaxArcField) return fail("arc end out of range");
+        const std::int64_t small = unzig(zs);
+        const std::int64_t pred = round_isqrt(std::max<std::int64_t>(0, cx * cx + cy * cy - small * small));
+        std::uint64_t v = 0;
+        if constexpr (!Io::kDecode) {
+            const std::int64_t large = y_large ? uy : ux;
+            v = (zig(std::llabs(large) - pred) << 2) | (std::uint64_t{y_large} << 1) | std::uint64_t{large < 0};
+        }
+        v = code_uint(kTArcLarge, v);
+        if (io_.failed || (v >> 2) > kMaxArcField) return fail("arc end out of range");
+        const std::int64_t mag = pred + unzig(v >> 2);
+        if (mag < 0 || std::llabs(small) > kMaxInterpolateCoord || mag > kMaxInterpolateCoord)
+            return fail("arc end out of range");
+        const std::int64_t large = (v & 1) ? -mag : mag;
+        if ((v >> 1) & 1) {
+            ux = small;
+            uy = large;
+        } else {
+            ux = large;
+            uy = small;
+        }
+        arc.delta[0] = cx + ux;
+        arc.delta[1] = cy + uy;
+        own_.push_back(arc);
+        segs_.push_back(&own_.back());
+        hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+        prev_shape_ = kNone;
+        prev_op_ = kAfterFull;
+        return true;
+    }
+
     // A match's offset (1 = the item just before), by repeat offset or in full.
     std::uint64_t code_offset(std::uint64_t want) {
         unsigned s = 0;
@@ -435,7 +513,7 @@ public:
         for (std::size_t k = 0; k < len; ++k) {
             const std::uint32_t e = hist_[from + k];
             hist_.push_back(e);
-            if ((e & ~kIndexMask) == kSegTag) last_seg = e;
+            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], axes_)) last_seg = e;
         }
         if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
         prev_shape_ = kNone;
@@ -647,7 +725,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                 items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
                 keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
                 ++h.nsegments;
-                h.nsteps += static_cast<std::uint64_t>(segment_length(s.delta, axes, profile_eight_connected(p)));
+                h.nsteps += item_steps(s, p, axes);
                 for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
             }
             items.push_back(kEndTag);
@@ -741,6 +819,12 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         } else if (kind == kEndTag) {
             coder.code_op(kOpEnd);
             coder.code_end();
+        } else if (is_arc(cs[e & kIndexMask], axes)) {
+            const Segment& want = cs[e & kIndexMask];
+            if (coder.arc_method_ < 0) coder.arc_method_ = static_cast<int>(want.delta[5]);
+            const unsigned op = arc_ccw(want) ? kOpArc + 1 : kOpArc;
+            coder.code_op(op);
+            coder.code_arc(op, &want);
         } else {
             const SuccList& sl = coder.succ_[coder.prev_shape_ + 1];
             std::uint32_t r = 0;
@@ -793,9 +877,18 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     std::uint64_t used = 0;
     for (int t = 0; t < kTables; ++t)
         for (auto c : io.count[static_cast<std::size_t>(t)]) used |= std::uint64_t{c != 0} << t;
+    // A block that codes arcs: the flag, the method byte, and operation
+    // tables of 92 symbols; any other block is written as before arcs were.
+    const bool arcs = coder.arc_method_ >= 0;
+    if (arcs) used |= std::uint64_t{1} << kTArcFlag;
     put_varint(out, used);
+    if (arcs) put_u8(out, static_cast<unsigned>(coder.arc_method_));
     for (int t = 0; t < kTables; ++t)
-        if ((used >> t) & 1) put_table(out, io.count[static_cast<std::size_t>(t)], enc[static_cast<std::size_t>(t)]);
+        if ((used >> t) & 1) {
+            std::vector<std::uint32_t>& count = io.count[static_cast<std::size_t>(t)];
+            if (!arcs) count.resize(alphabet(t, false));
+            put_table(out, count, enc[static_cast<std::size_t>(t)]);
+        }
     RansEncoder rans;
     for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
     const std::string stream = rans.finish();
@@ -831,10 +924,16 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     std::array<DecodeTable, kTables> tables;
     std::uint64_t used;
     const std::size_t used_at = cur.pos();
-    if (!cur.varint(used) || (used >> kTables) != 0) return error(Errc::corrupt, used_at, "bad table set");
+    if (!cur.varint(used) || (used >> (kTArcFlag + 1)) != 0) return error(Errc::corrupt, used_at, "bad table set");
+    const bool arcs = (used >> kTArcFlag) & 1;
+    if (!arcs && (used >> kLineTables) != 0) return error(Errc::corrupt, used_at, "bad table set");
+    if (arcs && axes != 2) return error(Errc::corrupt, used_at, "arcs in a frame of " + std::to_string(axes) + " axes");
+    std::uint8_t method = 0;
+    const std::size_t method_at = cur.pos();
+    if (arcs && (!cur.u8(method) || method >= kArcMethods)) return error(Errc::corrupt, method_at, "bad arc method");
     for (int t = 0; t < kTables; ++t) {
         const std::size_t at = cur.pos();
-        if (((used >> t) & 1) && !get_table(cur, alphabet(t), tables[static_cast<std::size_t>(t)]))
+        if (((used >> t) & 1) && !get_table(cur, alphabet(t, arcs), tables[static_cast<std::size_t>(t)]))
             return error(Errc::corrupt, at, "bad table " + std::to_string(t));
     }
     std::uint64_t rans_size;
@@ -847,6 +946,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     DecSide io{&tables, RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
     TableCoder<DecSide> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
+    if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
     if (window) coder.prime(*window, false);
     if (items) {
@@ -866,6 +966,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     bool in_chain = false;
     Chain chain;
     Point ref{}, pos{};
+    std::vector<Step> arc_scratch;
     // Takes history entry `e` (a decoded or copied item) into the output.
     auto take = [&](std::uint32_t e) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
@@ -890,6 +991,28 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
         } else {
             if (!in_chain) return "segment outside a chain";
             const Segment& seg = *coder.segs_[e & kIndexMask];
+            if (is_arc(seg, axes)) {
+                // Drawn to count its steps; its bound first, so that no arc
+                // draws more than the block declares.
+                if (seen_segments == h.nsegments || arc_step_bound(seg.delta[2], seg.delta[3]) > h.nsteps)
+                    return "arc may draw more steps than declared";
+                std::vector<Step>& to = expand ? chain.steps : arc_scratch;
+                const std::size_t before = expand ? to.size() : 0;
+                if (!expand) to.clear();
+                if (!draw_arc_item(seg, to)) return "arc the interpolator refuses";
+                const auto n = static_cast<std::uint64_t>(to.size() - before);
+                if (seen_steps + n > h.nsteps) return "more segments or steps than declared";
+                ++seen_segments;
+                seen_steps += n;
+                pos[0] += seg.delta[0];
+                pos[1] += seg.delta[1];
+                if (items) {
+                    items->segments.push_back(seg);
+                    ++items->counts.back();
+                    items->arcs = true;
+                }
+                return nullptr;
+            }
             const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
             if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
             ++seen_segments;
@@ -926,6 +1049,8 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             coder.take_shape(coder.recent_.at(r), true, r);
         } else if (op < kOpMatch) {
             if (!coder.code_full(op, nullptr)) return fail("bad segment");
+        } else if (op >= kOpArc) {
+            if (!coder.code_arc(op, nullptr)) return fail("bad arc");
         } else {
             const std::uint64_t len = 1 + bucket_value(op - kOpMatch, [&](int n) { return io.raw(n, 0); });
             const std::uint64_t off = coder.code_offset(0);

@@ -3,6 +3,8 @@
 
 #include <array>
 
+#include "arc_items.hpp"
+
 #include "../common/bytes.hpp"
 
 namespace stepzip::stz {
@@ -69,6 +71,7 @@ SegmentItems segment_items(const Block& block, const std::vector<std::vector<Seg
         ref = chain.start;
         for (const Segment& s : segs[i]) {
             out.segments.push_back(s);
+            out.arcs = out.arcs || is_arc(s, block.axes);
             for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
         }
     }

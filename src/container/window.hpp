@@ -21,6 +21,9 @@ struct SegmentItems {
     std::vector<Point> starts;
     std::vector<std::uint32_t> counts;  ///< segments of each chain
     std::vector<Segment> segments;
+    /// The block holds arc items (table blocks, docs/FORMAT.md 1.10.1): its
+    /// items enter the windows of table blocks only.
+    bool arcs = false;
 };
 
 /// One earlier block as the window holds it.

@@ -2,7 +2,8 @@
 // `segment --arc-method` writes as G2/G3 and G1 (include/stepzip/segment/arc.hpp).
 //
 // Walk: at each position the arc recognizer is asked for the longest arc
-// (longest_arc, at most kCutMaxDrawn centres drawn, ends near the circle). An arc counts only when
+// (longest_arc, at most kCutMaxDrawn centres drawn, ends near the circle,
+// one direction per centre when its band turns clearly). An arc counts only when
 // it bows by at least kArcMinBow steps from its chord (flatter runs are
 // digital straight lines as far as the steps show) and the lines from the
 // previous arc to its start plus the arc are at least two moves fewer than
@@ -41,6 +42,7 @@ ArcFit arc_at(ArcMethod method, std::span<const Step> steps, ArcSearchOptions o)
     o.min_bow = std::max(o.min_bow, kArcMinBow);
     if (o.max_drawn == 0) o.max_drawn = kCutMaxDrawn;
     o.near_ends = true;
+    o.one_direction = true;
     return longest_arc(method, steps, o);
 }
 

@@ -18,8 +18,9 @@
 //    full circle's path from the same start until an end counter of the last
 //    quadrant piece runs out near the end, so a reproduced prefix agrees with
 //    the full circle but for the same tail (after a counter runs out, one
-//    axis moves alone, then the correction run). For a short arc a
-//    quarter-turn longer arc stands in for the full circle (cheaper).
+//    axis moves alone, then the correction run). For an arc shorter than
+//    2R steps a quarter-turn longer arc stands in for the full circle
+//    (cheaper).
 // Invariant: longest_arc_about returns 0 or a verified length; every length
 // it skips lies beyond one of the two bounds (tested against a brute-force
 // search over every end, tests/segment_arc_test.cpp).
@@ -42,7 +43,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <map>
+#include <unordered_map>
 #include <utility>
 
 #include "stepzip/segment/arc.hpp"
@@ -73,11 +74,21 @@ std::int64_t tail_allowance(double r) {
 // radius r about c.
 std::size_t band_length(const std::vector<std::pair<std::int64_t, std::int64_t>>& pts,
                         std::int64_t cx, std::int64_t cy, double r, double band) {
+    // Squared distances against squared bounds a little inside and outside
+    // the band decide all but the points within 1e-6 of its edges, which
+    // take the square root as before (the same answer, fewer roots).
+    constexpr double kEdge = 1e-6;
+    const double hi = r + band, lo = std::max(0.0, r - band);
+    const double in_hi = (hi - kEdge) * (hi - kEdge), out_hi = (hi + kEdge) * (hi + kEdge);
+    const double in_lo = (lo + kEdge) * (lo + kEdge), out_lo = lo > kEdge ? (lo - kEdge) * (lo - kEdge) : -1.0;
     std::size_t k = 1;
     for (; k < pts.size(); ++k) {
         const double dx = static_cast<double>(pts[k].first - cx);
         const double dy = static_cast<double>(pts[k].second - cy);
-        if (std::fabs(std::sqrt(dx * dx + dy * dy) - r) > band) break;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 < in_hi && d2 > in_lo) continue;
+        if (d2 > out_hi || d2 < out_lo) break;
+        if (std::fabs(std::sqrt(d2) - r) > band) break;
     }
     return k - 1;
 }
@@ -110,6 +121,18 @@ bool short_correction(ArcMethod method) {
            method == ArcMethod::double_recursion;
 }
 
+// Whether interpolate_arc accepts the end (x1, y1) of an arc from (x0, y0)
+// about the origin (its check_arc, in the same arithmetic): both within
+// kMaxInterpolateCoord, neither at the centre, |end| within max(2, R/8) of R.
+bool arc_end_accepted(std::int64_t x0, std::int64_t y0, std::int64_t x1, std::int64_t y1) {
+    for (std::int64_t c : {x0, y0, x1, y1})
+        if (c < -kMaxInterpolateCoord || c > kMaxInterpolateCoord) return false;
+    if ((x0 == 0 && y0 == 0) || (x1 == 0 && y1 == 0)) return false;
+    const double r = std::sqrt(static_cast<double>(x0 * x0 + y0 * y0));
+    const double re = std::sqrt(static_cast<double>(x1 * x1 + y1 * y1));
+    return !(std::fabs(re - r) > std::fmax(2.0, r / 8));
+}
+
 struct AboutResult {
     std::size_t length = 0;
     std::size_t bound = 0;  // the largest end tried
@@ -138,14 +161,34 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
     std::size_t base = run_end(steps, band, n);
     const auto tail = static_cast<std::size_t>(tail_allowance(r));
     if (std::min(n, base + tail) <= floor) return res;
+    const bool per_end = near_ends || short_correction(method);
+    // An end k worth drawing: within the end allowance of its own distance
+    // from the circle (per_end) and one interpolate_arc accepts.
+    auto end_may = [&](std::size_t k, std::size_t b) {
+        const std::int64_t ex = pts[k].first - cx, ey = pts[k].second - cy;
+        if (per_end) {
+            const double off = std::fabs(std::hypot(static_cast<double>(ex),
+                                                    static_cast<double>(ey)) - r);
+            if (k > b + 2 * static_cast<std::size_t>(std::ceil(off)) + kArcTail) return false;
+        }
+        return arc_end_accepted(sx, sy, ex, ey);
+    };
+    // No end worth drawing under the band's bound (which the agreement below
+    // can only lower): nothing to draw, not even the reference.
+    {
+        std::size_t k = std::min(n, base + tail);
+        while (k > floor && !end_may(k, base)) --k;
+        if (k == floor) return res;
+    }
     if (method != ArcMethod::double_recursion) {
-        // The reference: the full circle, or for an arc shorter than R
-        // (a sweep under one radian) the arc to p_upper turned a quarter
-        // further, whose pieces up to p_upper's quadrant are the full
-        // circle's (p_upper's quadrant is not its last piece).
+        // The reference: the full circle, or for an arc shorter than 2R
+        // steps (a sweep under about 2.9 radians, as a step is at most
+        // sqrt(2) long) the arc to p_upper turned a quarter further, which
+        // stays under a full turn and whose pieces up to p_upper's quadrant
+        // are the full circle's (p_upper's quadrant is not its last piece).
         const std::size_t upper = std::min(n, base + tail);
         std::int64_t rx = sx, ry = sy;
-        if (static_cast<double>(upper) < r) {
+        if (static_cast<double>(upper) < 2 * r) {
             const auto ux = static_cast<double>(pts[upper].first - cx);
             const auto uy = static_cast<double>(pts[upper].second - cy);
             const double u = std::hypot(ux, uy);
@@ -166,14 +209,11 @@ AboutResult about(ArcMethod method, std::span<const Step> steps,
     }
     const std::size_t upper = std::min(n, base + tail);
     res.bound = upper;
-    const bool per_end = near_ends || short_correction(method);
     for (std::size_t k = upper; k > floor; --k) {
+        // interpolate_arc's own refusal is checked first (by end_may): a
+        // refused end costs no error message.
+        if (!end_may(k, base)) continue;
         const std::int64_t ex = pts[k].first - cx, ey = pts[k].second - cy;
-        if (per_end) {
-            const double off = std::fabs(std::hypot(static_cast<double>(ex),
-                                                    static_cast<double>(ey)) - r);
-            if (k > base + 2 * static_cast<std::size_t>(std::ceil(off)) + kArcTail) continue;
-        }
         scratch.clear();
         if (!interpolate_arc(method, sx, sy, ex, ey, ccw, scratch)) continue;
         if (scratch.size() == k && std::equal(scratch.begin(), scratch.end(), steps.begin())) {
@@ -281,7 +321,16 @@ ArcFit longest_arc(ArcMethod method, std::span<const Step> steps,
     const std::size_t min_len = std::max<std::size_t>(1, options.min_length);
     if (n < min_len) return best;
     std::vector<Step> scratch;
-    std::map<std::pair<std::int64_t, std::int64_t>, std::size_t> tried;  // centre -> band
+    // Centre -> band, for the centres seen (a hash map: the search looks up
+    // hundreds of centres per position).
+    struct CentreHash {
+        std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& c) const noexcept {
+            return std::hash<std::uint64_t>{}(static_cast<std::uint64_t>(c.first) * 0x9E3779B97F4A7C15ull ^
+                                              static_cast<std::uint64_t>(c.second));
+        }
+    };
+    std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::size_t, CentreHash> tried;
+    tried.reserve(1024);
     const double max_r = static_cast<double>(options.max_radius);
 
     // Candidates are collected with their band, then drawn in order of
@@ -312,7 +361,20 @@ ArcFit longest_arc(ArcMethod method, std::span<const Step> steps,
             const std::size_t floor = std::max(best.length, min_len - 1);
             if (run_bound(steps, c.band, n, r) <= floor) continue;
             if (options.max_drawn > 0 && ++drawn > options.max_drawn) break;
+            // One direction only (options.one_direction): the one the band's
+            // points turn in about c, seen at a point at most R steps on
+            // (a sweep under pi), when they turn clearly.
+            int turn = 0;
+            if (options.one_direction) {
+                const std::size_t j = std::min<std::size_t>(c.band, static_cast<std::size_t>(r));
+                if (j >= 2) {
+                    const std::int64_t qx = pts[j].first - c.cx, qy = pts[j].second - c.cy;
+                    const std::int64_t cross = -c.cx * qy + c.cy * qx;
+                    turn = cross > 0 ? 1 : cross < 0 ? -1 : 0;
+                }
+            }
             for (bool ccw : {true, false}) {
+                if ((turn > 0 && !ccw) || (turn < 0 && ccw)) continue;
                 const std::size_t fl = std::max(best.length, min_len - 1);
                 const auto res = about(method, steps, pts, c.cx, c.cy, ccw, fl, scratch, c.band,
                                        options.near_ends);

@@ -190,27 +190,31 @@ files.update({
 })
 # Version 2, table block (docs/FORMAT.md 1.10), from tests/golden/v2/table.fc.stz:
 # two table blocks (the second flagged `window`) and a step-model block.
-goodT = open(os.path.join(here, '..', 'golden', 'v2', 'table.fc.stz'), 'rb').read()
-assert goodT[4] == 2 and goodT[8] & 7 == 5, 'v2/table.fc.stz should start with a table block'
-csizeT, payT = varint_at(goodT, 9)
-endT = payT + csizeT
-payloadT = goodT[payT:endT]
+def first_table_block(name):
+    """tests/golden/v2/NAME, whose first block is a table block: the frame,
+    that block's payload, a function giving the frame with the payload
+    replaced (size and checksum redone), and the offset of the payload's
+    table set (section 1.10: nchains, nsegments, nsteps, grid, layout)."""
+    good = open(os.path.join(here, '..', 'golden', 'v2', name), 'rb').read()
+    assert good[4] == 2 and good[8] & 7 == 5, 'v2/%s should start with a table block' % name
+    csize, pay = varint_at(good, 9)
+    end = pay + csize
+    payload = good[pay:end]
+
+    def rebuild(new):
+        body = good[8:9] + put_varint(len(new)) + new
+        return good[:8] + body + struct.pack('<I', check32(body)) + good[end + 4:]
+
+    at = 0
+    for _ in range(4):  # nchains, nsegments, nsteps, grid
+        _, at = varint_at(payload, at)
+    _, at = varint_at(payload, at)  # layout size
+    stored, at = varint_at(payload, at)
+    return good, payload, rebuild, at + stored
 
 
-def table_block(payload):
-    """goodT with its first block's payload replaced (size and checksum redone)."""
-    body = goodT[8:9] + put_varint(len(payload)) + payload
-    return goodT[:8] + body + struct.pack('<I', check32(body)) + goodT[endT + 4:]
-
-
-# Walk the payload's fields (section 1.10) to the table set and the rANS size.
-at = 0
-for _ in range(4):  # nchains, nsegments, nsteps, grid
-    _, at = varint_at(payloadT, at)
-_, at = varint_at(payloadT, at)  # layout size
-stored, at = varint_at(payloadT, at)
-at += stored
-set_at = at
+_, payloadT, table_block, set_at = first_table_block('table.fc.stz')
+at = set_at
 table_set, at = varint_at(payloadT, at)
 for t in range(50):
     if not (table_set >> t) & 1:
@@ -249,6 +253,19 @@ files.update({
     'v2_timed_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(timed, t_payload, 9))),
     # A coding that is neither 0 (plain) nor 1 (mixed predictions).
     'v2_timed_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(timed, t_payload + 1, 2))),
+})
+# Arc items (docs/FORMAT.md 1.10.1), from tests/golden/v2/arcs_eval.fc.stz:
+# one table block that codes arcs (table-set bit 53, then the method byte).
+_, payloadA, arc_block, set_atA = first_table_block('arcs_eval.fc.stz')
+table_setA, method_atA = varint_at(payloadA, set_atA)
+assert (table_setA >> 53) & 1 and payloadA[method_atA] == 0, 'arcs_eval: an arc block of method evaluation'
+files.update({
+    # Arc method 5: no such method.
+    'v2_arc_method': ('corrupt', whereT % method_atA,
+                      arc_block(payloadA[:method_atA] + b'\x05' + payloadA[method_atA + 1:])),
+    # The arc flag (bit 53) cleared: the arc tables (bits 50-52) without it.
+    'v2_arc_flag': ('corrupt', whereT % set_atA,
+                    arc_block(payloadA[:set_atA] + put_varint(table_setA & ~(1 << 53)) + payloadA[method_atA:])),
 })
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)

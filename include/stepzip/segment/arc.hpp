@@ -67,6 +67,11 @@ struct ArcSearchOptions {
     /// double_recursion always): dda and prediction arcs whose end lies far
     /// off the circle may be missed, and large radii cost far less.
     bool near_ends = false;
+    /// true: a candidate centre is drawn in one direction only when the
+    /// points within its band turn clearly one way about it (seen at most
+    /// R steps on): half the drawing, and an arc whose first points turn
+    /// against its direction is missed.
+    bool one_direction = false;
     /// > 0: also try every integer centre (cx, cy) with |cx|, |cy| <= this
     /// (exhaustive mode, for small radii and tests; (2b+1)^2 centres).
     std::int64_t exhaustive_box = 0;
@@ -144,7 +149,7 @@ struct ArcCutOptions {
 
 /// Cuts two-axis `steps` into arcs drawn by `method` and default-phase lines
 /// of `profile` (segment_default_phase). Walking the steps, a position where
-/// longest_arc() finds an arc (at most 64 centres drawn, near_ends) that bows by 2
+/// longest_arc() finds an arc (at most 64 centres drawn, near_ends, one_direction) that bows by 2
 /// steps or more from its chord (flatter runs are left to the lines) starts
 /// an arc: of the starts within the lookahead, the one whose arc ends
 /// farthest; its end is moved back by up to `lookahead` steps when the next
