@@ -466,8 +466,7 @@ public:
         }
         arc.delta[0] = cx + ux;
         arc.delta[1] = cy + uy;
-        own_.push_back(arc);
-        segs_.push_back(&own_.back());
+        segs_.push_back(&own_.push_back(arc));
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         prev_shape_ = kNone;
         prev_op_ = kAfterFull;
