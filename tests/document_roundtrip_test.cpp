@@ -541,7 +541,7 @@ TEST(StepsRoundTrip, DirZeroAtRestIsChosenWhereItHasFewerExceptions) {
         EXPECT_LE(blocks[0].layout.size(), 8u + 4u * 200u);
         // Every block (small ones continue a move mid-way) chooses alone,
         // whatever the feeding.
-        round_trip(InputFormat::steps, log, {1, 7, 1000, kDefaultBlockSteps});
+        round_trip(InputFormat::steps, log, {1, 7, 1000, 4096, 5000, kDefaultBlockSteps});
     }
     // A sticky log keeps the sticky layout.
     const std::string sticky = synthetic_log(rng, 200, 1, 0);

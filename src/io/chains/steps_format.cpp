@@ -264,12 +264,17 @@ Result<void> StepsParser::feed(std::string_view data, bool last) {
     for (std::size_t i = 0; i < size; ++i) {
         if (!decided_ && blk_steps_ >= kDecideSteps) decide();
         const std::uint8_t b = in[i];
-        const auto [stepping, moving_dirs, dirs, flip] = read_tick(b, level_);
-        if ((stepping != 0 && blk_steps_ >= block_steps_) || layout_size() >= cap_) {
+        Tick tick = read_tick(b, level_);
+        if ((tick.stepping != 0 && blk_steps_ >= block_steps_) || layout_size() >= cap_) {
             cut(true);
             steps = &blk_.chains.back().steps;
             steps->reserve(std::min<std::size_t>(block_steps_, data.size()));
+            // The new block starts sticky from the last tick's DIR levels:
+            // the tick is read again against them (the old block may have
+            // been read under DIR 0 at rest).
+            tick = read_tick(b, level_);
         }
+        const auto [stepping, moving_dirs, dirs, flip] = tick;
         if (flip != 0) {
             flush_all();
             layout_.push_back(static_cast<char>(kFlip | dir_to_mask(flip)));
