@@ -450,8 +450,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         auto w = std::make_shared<WindowBlock>();
         w->weight = job.steps + block.chains.size();
         w->first_type = type;
-        if (type != kRaw) add_steps(*w, block);
-        job.contribution = std::move(w);
+        job.contribution = std::move(w);  // its symbols: when a block needs them (compress.cpp)
     }
 }
 
@@ -463,21 +462,24 @@ bool has_symbols(const WindowView& window) {
 }
 }  // namespace
 
-void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || !has_symbols(window)) return;
+bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || window.empty()) return false;
     // A table block tries the step model from the window where its first
     // pass tried the step model: at kFastStepLevel and above, dense blocks.
     if (job.type == kTable) {
         std::uint64_t nsegs = 0;
         for (const auto& v : job.cut) nsegs += v.size();
-        if (s.level < kFastStepLevel || nsegs * 1000 < kSegmentModelOnly * job.steps) return;
+        if (s.level < kFastStepLevel || nsegs * 1000 < kSegmentModelOnly * job.steps) return false;
     }
     // Below the thorough levels a segment-model block whose window holds
     // segment-model blocks only (as the first pass chose) stays one: the
     // segment model sees the window's content too.
-    if (!s.thorough && job.type == kSegmentModel &&
-        std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; }))
-        return;
+    return s.thorough || job.type != kSegmentModel ||
+           !std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; });
+}
+
+void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (!wants_window_steps(job, s, window) || !has_symbols(window)) return;
     int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
     if (model.empty() || model.size() > kMaxBlockPayload) return;

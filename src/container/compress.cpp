@@ -1,10 +1,12 @@
 // .stz encoder, the frame writer (docs/FORMAT.md): read -> batch ->
 // parallel jobs -> ordered write -> trailer. Each block of a batch runs the
 // block strategy (block_strategy.cpp): a first pass without the window, then
-// the step model and the segment model from the window, then the first half
-// of the round-trip proof (round_trip.cpp); the second half of the proof and
-// the write follow in block order.
-// Memory: about (threads + 1) blocks plus the window's content. What a job
+// the step model and the segment model from the window, then the round-trip
+// proof (round_trip.cpp: the record decoded and compared with the block,
+// whose rendering was compared with the input bytes when it was parsed);
+// the write follows in block order.
+// Memory: about (threads + 1) blocks plus the window's content (a window
+// block's chains until its step-model symbols are made, then the symbols). What a job
 // sees depends only on the blocks before it, so -T N output equals -T 1
 // output byte for byte.
 #include <xxhash.h>
@@ -99,7 +101,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     info.segmenter = s.segmenter;
     std::optional<BlockReader> reader;
     std::optional<InputFormat> format = opt.format;
-    std::unique_ptr<BlockWriter> render, proof;
+    std::unique_ptr<BlockWriter> render;
 
     // Input bytes fed to the reader and not yet matched by a rendered block.
     std::string pending;
@@ -131,6 +133,16 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     };
 
     Window window(s.window_log == 0 ? 0 : std::uint64_t{1} << s.window_log);
+    // Chain blocks in the window whose step-model symbols are not made yet:
+    // they are made only when a block's second pass may read them (at the
+    // fast levels a frame of table blocks never does). Until then the
+    // block's chains are kept (2 bytes a step where the symbols take 1).
+    struct PendingSymbols {
+        std::shared_ptr<WindowBlock> w;
+        Block* block;                  // the job's block, then `kept`
+        std::unique_ptr<Block> kept;   // after the block's batch
+    };
+    std::vector<PendingSymbols> pending_symbols;
     std::vector<BlockJob> batch;
     std::uint64_t next_chain = 0;
     bool chain_open = false;
@@ -147,21 +159,32 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         std::vector<WindowView> views(batch.size());
         for (std::size_t i = 0; i < batch.size(); ++i) {
             views[i] = window.view();
-            if (batch[i].contribution) window.push(batch[i].contribution);
+            if (batch[i].contribution) {
+                window.push(batch[i].contribution);
+                if (batch[i].type != kRaw) pending_symbols.push_back({batch[i].contribution, &batch[i].block, nullptr});
+            }
+        }
+        // Blocks the window no longer holds never need their symbols.
+        std::erase_if(pending_symbols, [](const PendingSymbols& p) { return p.w.use_count() == 1; });
+        bool symbols_wanted = false;
+        for (std::size_t i = 0; i < batch.size() && !symbols_wanted; ++i)
+            symbols_wanted = wants_window_steps(batch[i], s, views[i]);
+        if (symbols_wanted) {
+            for (PendingSymbols& p : pending_symbols) add_steps(*p.w, *p.block);
+            pending_symbols.clear();
         }
         // Pass 2: the step model from the window (final block types).
         parallel_for(batch.size(), threads, [&](std::size_t i) {
             window_step_pass(batch[i], s, views[i]);
             note_items(batch[i]);
         });
-        // Pass 3: the segment model from the window; the decoding half of the proof.
+        // Pass 3: the segment model from the window; the round-trip proof.
         parallel_for(batch.size(), threads, [&](std::size_t i) {
             window_segment_pass(batch[i], s, views[i]);
             prove_decoded(batch[i], s, views[i]);
         });
         for (BlockJob& j : batch) {
             if (j.error.code != Errc::ok) return std::move(j.error);
-            if (auto r = prove_rendered(*proof, j, s, info.blocks); !r) return r;
             if (j.type != kRaw) {
                 info.segments += j.counts.segments;
                 info.stats += j.stats;
@@ -182,6 +205,13 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             info.compressed_bytes += j.record.size();
             if (auto r = out(j.record); !r) return r;
         }
+        for (PendingSymbols& p : pending_symbols)
+            if (!p.kept) {
+                p.kept = std::make_unique<Block>();
+                p.kept->axes = p.block->axes;  // a job of this batch, written
+                p.kept->chains = std::move(p.block->chains);
+                p.block = p.kept.get();
+            }
         batch.clear();
         return {};
     };
@@ -237,7 +267,6 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             s.timed = *format == InputFormat::timed;
             reader.emplace(*format, s.source, opt.block_steps);
             render = std::make_unique<BlockWriter>(*format);
-            proof = std::make_unique<BlockWriter>(*format);
         }
         pending.append(data);
         if (auto r = reader->feed(data, *n == 0); !r) return std::move(r).error();

@@ -89,9 +89,14 @@ int window_log_for_level(int level);
 /// on whether it is a chain block: weight, Freeman symbols, chain starts.
 void choose_block(BlockJob& job, const EncoderSettings& s);
 
+/// Whether window_step_pass() may code `job` by the step model from
+/// `window` (then the window's blocks need their symbols: add_steps()).
+/// A function of the first pass's choices.
+bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const WindowView& window);
+
 /// Second pass (parallel): a chain block on two axes coded by the step
-/// model from `window` (whose symbols are fixed by the first pass), kept
-/// when smaller. Decides the final block type.
+/// model from `window` (whose symbols are made before this pass when
+/// wants_window_steps()), kept when smaller. Decides the final block type.
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window);
 
 /// The segment items a segment-model block adds to the window, once its
@@ -104,15 +109,12 @@ void note_items(BlockJob& job);
 /// mixed predictions (block type 6), kept when smaller.
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window);
 
-/// Round-trip proof, part 1 (parallel): decodes the job's record exactly as
-/// the decoder does (with `window` when flagged) and compares the chains
-/// and layout with the input. Sets job.error (Errc::mismatch) on failure.
+/// Round-trip proof (parallel): decodes the job's record exactly as the
+/// decoder does (with `window` when flagged) and compares the chains and
+/// layout with the input block's, whose rendering was compared with the
+/// input bytes when it was parsed (a renderer reads the block alone, so
+/// the decoded block renders to the same bytes). Sets job.error
+/// (Errc::mismatch) on failure.
 void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& window);
-
-/// Round-trip proof, part 2 (in block order): renders the decoded block with
-/// `proof`, a writer that sees exactly what the decoder's writer sees, and
-/// compares with the input bytes.
-Result<void> prove_rendered(BlockWriter& proof, const BlockJob& job, const EncoderSettings& s,
-                            std::uint64_t block_index);
 
 }  // namespace stepzip::stz

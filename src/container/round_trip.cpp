@@ -1,8 +1,10 @@
 // The encoder's round-trip proof (docs/FORMAT.md section 4): every block
-// record is decoded again exactly as the decoder does, its chains compared
-// with the input chains (in the parallel jobs), and the decoded block
-// rendered and compared with the input bytes (in block order, as the
-// decoder's writer sees the blocks).
+// record is decoded again exactly as the decoder does and the decoded block
+// compared with the input block, field by field (in the parallel jobs). The
+// input block's rendering was compared with the input bytes when it was
+// parsed (compress.cpp), and a renderer is a function of the block alone
+// (document.hpp: each layout is self-contained), so the decoded block
+// renders to the input bytes: it is not rendered a second time.
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "table_block.hpp"
@@ -28,6 +30,7 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
         job.counts.steps = job.steps;
         return;
     }
+    job.decoded.axes = job.block.axes;  // the frame's (the decoder's header)
     job.decoded.continues = job.block.continues;
     job.decoded.open = job.block.open;
     const WindowView* w = (rec.flags & kFlagWindow) ? &window : nullptr;
@@ -51,17 +54,6 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
     }
     if (job.decoded.chains != job.block.chains || job.decoded.layout != job.block.layout)
         job.error = make_error(Errc::mismatch, where + ": decoded chains differ from the input (internal error)");
-}
-
-Result<void> prove_rendered(BlockWriter& proof, const BlockJob& job, const EncoderSettings& s,
-                            std::uint64_t block_index) {
-    if (job.type == kRaw) return {};
-    std::string again;
-    auto r = proof.write(job.decoded, again);
-    if (!r || again != job.bytes)
-        return make_error(Errc::mismatch, s.source + ": round-trip proof failed on block " +
-                                              std::to_string(block_index) + " (internal error); nothing written");
-    return {};
 }
 
 }  // namespace stepzip::stz
