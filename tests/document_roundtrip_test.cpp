@@ -150,6 +150,29 @@ TEST(FreemanRoundTrip, ChainsAreRead) {
     EXPECT_EQ((*chains)[2], chain2(0, 0, "7"));
 }
 
+// Runs of codes of every length up to past four 16-byte pieces, ended by
+// every kind of byte: each code read as its step, and a byte that is no code
+// (the ones next to '0'..'7' too) named at its column.
+TEST(FreemanRoundTrip, CodeRunsOfEveryLengthAndEnd) {
+    std::mt19937 rng(5);
+    for (std::size_t n = 1; n <= 70; ++n) {
+        std::string codes;
+        for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));
+        for (const std::string end : {"\n", " \n", "\r\n", ""}) {
+            auto chains = read_chains(InputFormat::freeman, "3 -2 " + codes + end);
+            ASSERT_TRUE(chains.ok()) << chains.error().message;
+            ASSERT_EQ(chains->size(), 1u);
+            EXPECT_EQ((*chains)[0], chain2(3, -2, codes.c_str())) << n;
+        }
+        for (const char bad : {'8', '9', '/', ':', 'a', '\x80', '\xff'}) {
+            auto chains = read_chains(InputFormat::freeman, "0 0 " + codes + bad + "0\n", "t.txt");
+            ASSERT_FALSE(chains.ok()) << n;
+            EXPECT_EQ(chains.error().message.rfind("t.txt:1:" + std::to_string(5 + n) + ": ", 0), 0u)
+                << chains.error().message;
+        }
+    }
+}
+
 TEST(FreemanRoundTrip, CanonicalLinesCostAFewLayoutBytes) {
     std::string in;
     for (int i = 0; i < 1000; ++i) in += std::to_string(i) + " " + std::to_string(-i) + " 0011223344556677\n";

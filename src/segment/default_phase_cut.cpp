@@ -5,18 +5,21 @@
 // ends, so its segments repeat and cost no phase; the free-phase greedy cut
 // may run a few steps past a vector end and shift every later cut.
 // Complexity, two axes: O(log n) per run of identical steps for the
-// recognizer (run_word.hpp), O(L) per segment start for the letter
+// recognizer (two_axis.hpp), O(L) per segment start for the letter
 // positions, and O(1) per candidate length plus O(S) for the one that is
 // taken (the default-phase pattern's letters are found by division, see
 // emit_two_letter in src/interpolate/linear.cpp). More axes: O(64 · L) per
 // segment (the patterns are expanded). Encoder only; the decoder does not
 // depend on the cut.
 #include <algorithm>
+#include <optional>
 
 #include "default_phase_cut.hpp"
 #include "run_word.hpp"
 #include "stepzip/interpolate/segment.hpp"
 #include "stepzip/segment/recognizer.hpp"
+#include "stepzip/segmenter.hpp"
+#include "two_axis.hpp"
 
 namespace stepzip {
 
@@ -118,11 +121,19 @@ private:
 };
 
 bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& out) {
-    detail::RunSegment rec(p, 2);
+    // The longest exact segment at each point: TwoAxisGreedy (the greedy
+    // cut's recognizer, several times faster on short segments) where every
+    // step is valid for the profile, its precondition; else RunSegment,
+    // which answers 0 at an invalid step. Same answers (two_axis.hpp).
+    std::optional<detail::TwoAxisGreedy> two;
+    std::optional<detail::RunSegment> rec;
+    if (profile_accepts(p, steps, 2)) two.emplace(p);
+    else rec.emplace(p, 2);
     TwoAxisWindow win(p);
     std::size_t i = 0;
     while (i < steps.size()) {
-        const auto valid = static_cast<std::size_t>(detail::longest_exact_prefix(rec, steps.subspan(i)));
+        const auto valid = static_cast<std::size_t>(two ? two->longest(steps.subspan(i))
+                                                        : detail::longest_exact_prefix(*rec, steps.subspan(i)));
         if (valid == 0) return false;
         win.load(steps.subspan(i, valid));
         Segment seg;

@@ -1,6 +1,7 @@
 // Entry points of reverse interpolation. See segmenter.hpp.
 #include "stepzip/segmenter.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "stepzip/segment/segmenters.hpp"
@@ -31,23 +32,33 @@ Result<void> profile_accepts(Profile p, std::span<const Step> steps, int axes) {
     // Fast check, branch-free per step: no bit past the axes, no DIR bit on
     // a resting axis, some axis moving, one moving axis when 4-connected.
     // The loop below names the first offending step.
-    // In pieces of a fixed length, so that the compiler vectorizes the
-    // inner loop at -O2 too.
-    const unsigned past = axes < kMaxAxes ? ~0u << (2 * axes) : ~0u << (2 * kMaxAxes);
-    const unsigned four = eight ? 0u : 1u;
-    auto check = [&](unsigned s) {
-        const unsigned moves = s & 0x555u;
-        return (s & past) | ((s >> 1) & ~s & 0x555u) | static_cast<unsigned>(moves == 0) |
-               (four & static_cast<unsigned>((moves & (moves - 1)) != 0));
+    // In 16-bit lanes and pieces of a fixed length, so that the compiler
+    // vectorizes the inner loop at -O2 too; a chain's last piece overlaps
+    // the one before it (short chains are the common case on contours).
+    const auto past = static_cast<std::uint16_t>(0xFFFFu << (2 * std::min(axes, kMaxAxes)));
+    const std::uint16_t four = eight ? 0 : 0xFFFF;
+    auto check = [&](std::uint16_t s) -> std::uint16_t {
+        const auto moves = static_cast<std::uint16_t>(s & 0x555u);
+        const auto multi = static_cast<std::uint16_t>(moves & (moves - 1u));
+        return static_cast<std::uint16_t>((s & past) | ((s >> 1) & ~s & 0x555u) | (moves == 0 ? 0xFFFFu : 0u) |
+                                          (multi != 0 ? four : 0u));
     };
-    constexpr std::size_t kPiece = 64;
+    constexpr std::size_t kPiece = 16;
     const Step* st = steps.data();
     const std::size_t n = steps.size();
-    unsigned bad = 0;
+    std::uint16_t bad = 0;
+    auto piece = [&](const Step* at) {
+        std::uint16_t b = 0;
+        for (std::size_t j = 0; j < kPiece; ++j) b |= check(at[j]);
+        return b;
+    };
     std::size_t i = 0;
-    for (; n - i >= kPiece && bad == 0; i += kPiece)
-        for (std::size_t j = 0; j < kPiece; ++j) bad |= check(st[i + j]);
-    for (; i < n; ++i) bad |= check(st[i]);
+    for (; n - i >= kPiece && bad == 0; i += kPiece) bad |= piece(st + i);
+    if (i < n && bad == 0) {
+        if (n >= kPiece) bad |= piece(st + n - kPiece);
+        else
+            for (; i < n; ++i) bad |= check(st[i]);
+    }
     if (bad == 0) return {};
     for (std::size_t i = 0; i < steps.size(); ++i) {
         if (!step_valid(steps[i], axes))

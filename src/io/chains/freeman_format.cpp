@@ -6,6 +6,11 @@
 // line head (bounded by kMaxFieldBytes per field); codes go straight into
 // the block's chain in a tight loop. Complexity: O(1) per input byte.
 #include <algorithm>
+#include <bit>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "line_scanner.hpp"
 
@@ -13,6 +18,48 @@ namespace stepzip::io {
 namespace {
 
 constexpr Step kCodeStep[8] = {0x01, 0x05, 0x04, 0x07, 0x03, 0x0F, 0x0C, 0x0D};
+
+// Codes at memory speed: where SSE2 is there (every x86-64), 16 bytes at a
+// time; the scalar loops finish and stand in elsewhere. Same answers.
+
+// Length of the run of Freeman digits '0'..'7' at p, at most n bytes.
+std::size_t code_run(const unsigned char* p, std::size_t n) {
+    std::size_t k = 0;
+#if defined(__SSE2__)
+    const __m128i zero = _mm_set1_epi8('0'), high = _mm_set1_epi8(static_cast<char>(0xF8)), none = _mm_setzero_si128();
+    for (; n - k >= 16; k += 16) {
+        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k)), zero);
+        const auto digit = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_and_si128(d, high), none)));
+        if (digit != 0xFFFFu) return k + static_cast<std::size_t>(std::countr_one(digit));
+    }
+#endif
+    while (k < n && static_cast<unsigned char>(p[k] - '0') <= 7u) ++k;
+    return k;
+}
+
+// The steps of the n Freeman digits at p (each '0'..'7').
+void code_steps(const unsigned char* p, std::size_t n, Step* o) {
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    // Per digit d: x moves unless d & 3 == 2, y moves unless d & 3 == 0, x
+    // negative for 3 <= d <= 5, y negative for d >= 5 (kCodeStep's bits).
+    const __m128i zero = _mm_set1_epi8('0'), three = _mm_set1_epi8(3), two = _mm_set1_epi8(2);
+    const __m128i four = _mm_set1_epi8(4), six = _mm_set1_epi8(6), none = _mm_setzero_si128();
+    const __m128i b0 = _mm_set1_epi8(1), b1 = _mm_set1_epi8(2), b2 = _mm_set1_epi8(4), b3 = _mm_set1_epi8(8);
+    for (; n - i >= 16; i += 16) {
+        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i)), zero);
+        const __m128i low = _mm_and_si128(d, three);
+        const __m128i x_rest = _mm_cmpeq_epi8(low, two), y_rest = _mm_cmpeq_epi8(low, none);
+        const __m128i x_neg = _mm_and_si128(_mm_cmpgt_epi8(d, two), _mm_cmpgt_epi8(six, d));
+        const __m128i y_neg = _mm_cmpgt_epi8(d, four);
+        const __m128i s = _mm_or_si128(_mm_or_si128(_mm_andnot_si128(x_rest, b0), _mm_and_si128(x_neg, b1)),
+                                       _mm_or_si128(_mm_andnot_si128(y_rest, b2), _mm_and_si128(y_neg, b3)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(o + i), _mm_unpacklo_epi8(s, none));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(o + i + 8), _mm_unpackhi_epi8(s, none));
+    }
+#endif
+    for (; i < n; ++i) o[i] = kCodeStep[(p[i] - '0') & 7];
+}
 // Two-axis step (0..15) to its Freeman digit, 0 when it has none.
 constexpr char kStepCode[16] = {0,   '0', 0, '4', '2', '1', 0, '3',
                                 0,   0,   0, 0,   '6', '7', 0, '5'};
@@ -181,15 +228,12 @@ const unsigned char* FreemanParser::run_codes(const unsigned char* p, const unsi
         std::vector<Step>& steps = blk_.chains.back().steps;
         const std::size_t room = block_steps_ - blk_steps_;
         const unsigned char* lim = p + std::min<std::size_t>(room, static_cast<std::size_t>(end - p));
-        // The run of codes first (a loop the compiler vectorizes), then all
-        // its steps at once.
-        const unsigned char* q = p;
-        while (q < lim && static_cast<unsigned char>(*q - '0') <= 7u) ++q;
-        const auto k = static_cast<std::size_t>(q - p);
+        // The run of codes first, then all its steps at once.
+        const std::size_t k = code_run(p, static_cast<std::size_t>(lim - p));
+        const unsigned char* q = p + k;
         const std::size_t base = steps.size();
         steps.resize(base + k);
-        Step* o = steps.data() + base;
-        for (std::size_t i = 0; i < k; ++i) o[i] = kCodeStep[(p[i] - '0') & 7];
+        code_steps(p, k, steps.data() + base);
         blk_steps_ += k;
         col_ += k;
         line_codes_ += k;
