@@ -8,13 +8,14 @@ recur at the same coordinates, pages apart. Usage:
     hershey_pages.py SCALE FONT.jhf [FONT.jhf ...] > job.gcode
 
 SCALE is the number of motor steps per Hershey unit. The font reader is
-hershey_gcode.py's.
+hershey_gcode.py's, and so is the
+drawing of a glyph.
 """
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hershey_gcode import read_jhf  # noqa: E402
+from hershey_gcode import draw_glyph, read_jhf  # noqa: E402
 
 PAGE = [
     "The quick brown fox jumps over the lazy dog.",
@@ -43,11 +44,7 @@ def main():
                 if k < 0 or k >= len(glyphs):
                     continue
                 left, right, strokes = glyphs[k]
-                for stroke in strokes:
-                    pts = [(x0 + (x - left) * scale, y0 - y * scale) for x, y in stroke]
-                    out.write('G0 X%d Y%d\n' % pts[0])
-                    for p in pts[1:]:
-                        out.write('G1 X%d Y%d\n' % p)
+                draw_glyph(out, x0, y0, scale, left, strokes)
                 x0 += (right - left) * scale
             y0 -= 40 * scale
         out.write('G0 X0 Y0\n')
