@@ -432,11 +432,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // (random walks): there the step model wins by 20-25 %.
         // From kFastStepLevel a large block too, where its sample says the
         // segment model may pay; kept only by a margin (kModelMargin).
-        const bool large_model = !s.thorough && !s.timed && s.level >= kFastStepLevel &&
+        const bool model_fits = block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps;
+        const bool large_model = model_fits && !s.thorough && !s.timed && s.level >= kFastStepLevel &&
                                  job.steps >= kSmallBlockSteps && type == kTable &&
                                  segment_model_may_pay(block, s.profile, segs, table_effort(s.level));
-        if ((s.thorough || s.timed || job.steps < kSmallBlockSteps || large_model) &&
-            (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps)) {
+        if ((s.thorough || s.timed || job.steps < kSmallBlockSteps || large_model) && model_fits) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
