@@ -11,12 +11,15 @@
 #       font unit with the Hershey fonts gothgbt, gothiceng, rowmant, timesrb,
 #       futuram, rowmand, cursive, scripts (pairs that share glyphs), stepped
 #       by `stepzip interpolate --profile grbl|eval8`.
+#   glyphs-big.fc  the 8-connected glyph contours of docs/benchmarks.md's
+#       "Fast tier" (Liberation and FreeFont faces at 96-384 px, characters
+#       33-255; Debian fonts-liberation2, fonts-freefont-ttf), 3712211 bytes.
 # Usage: corpora/tools/bench_inputs.sh STEPZIP OUTDIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 stepzip=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 out=$2
-for p in fonts-urw-base35 hershey-fonts-data libfreetype-dev pkg-config g++; do
+for p in fonts-urw-base35 fonts-liberation2 fonts-freefont-ttf hershey-fonts-data libfreetype-dev pkg-config g++; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
     echo "bench_inputs.sh: missing Debian package: $p" >&2; exit 1; }
 done
@@ -40,6 +43,20 @@ for c in 8 4; do
     done
   done
 done
+
+# the comment lines keep the fonts' full paths, as when the figures of
+# docs/benchmarks.md were measured
+lib=/usr/share/fonts/truetype/liberation2 free=/usr/share/fonts/truetype/freefont
+{
+  for f in $lib/LiberationSans-Regular $lib/LiberationSerif-Regular $lib/LiberationMono-Regular \
+           $free/FreeSans $free/FreeSerif; do
+    for px in 96 160; do "$tmp/trace_glyphs" $f.ttf $px 8 33 255; done
+  done
+  for f in $lib/LiberationSans-Bold $lib/LiberationSans-Italic $lib/LiberationSerif-Italic \
+           $free/FreeSerifBold $free/FreeSansOblique $free/FreeMono; do
+    for px in 256 384; do "$tmp/trace_glyphs" $f.ttf $px 8 33 255; done
+  done
+} > "$out/glyphs-big.fc"
 
 h=/usr/share/hershey-fonts
 python3 "$here/hershey_pages.py" 10 $h/gothgbt.jhf $h/gothiceng.jhf $h/rowmant.jhf $h/timesrb.jhf \
