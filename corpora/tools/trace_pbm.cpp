@@ -78,8 +78,9 @@ const int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 const int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 
 // The walk of one boundary from (sx, sy), whose north neighbour is
-// background: the first scan starts just counter-clockwise of north. `step` is 1 (8-connected: every direction) or 2
-// (4-connected: even directions only). After a move in direction `dir` the
+// background: the first scan starts just counter-clockwise of north. `step`
+// is 1 (8-connected: every direction) or 2 (4-connected: even directions
+// only). After a move in direction `dir` the
 // neighbours are scanned counter-clockwise from (dir + 7) % 8 for an even
 // and (dir + 6) % 8 for an odd move (8-connected), from (dir + 6) % 8
 // (4-connected): the first ink pixel is the next one, so ink stays on the
