@@ -41,6 +41,17 @@ def read_jhf(path):
         yield left, right, strokes
 
 
+def draw_glyph(out, x0, y0, scale, left, strokes):
+    """Writes a glyph's strokes as G0 to its first point and G1 through the
+    rest, its left edge at x0 and its origin line at y0."""
+    for stroke in strokes:
+        # Hershey y grows downward
+        pts = [(x0 + (x - left) * scale, y0 - y * scale) for x, y in stroke]
+        out.write('G0 X%d Y%d\n' % pts[0])
+        for p in pts[1:]:
+            out.write('G1 X%d Y%d\n' % p)
+
+
 def main():
     scale = int(sys.argv[1])
     page_width = 2400 * scale // 10
@@ -55,12 +66,7 @@ def main():
             if x0 + (right - left) * scale > page_width:
                 x0 = 0
                 y0 -= 40 * scale
-            for stroke in strokes:
-                # Hershey y grows downward
-                pts = [(x0 + (x - left) * scale, y0 - y * scale) for x, y in stroke]
-                out.write('G0 X%d Y%d\n' % pts[0])
-                for p in pts[1:]:
-                    out.write('G1 X%d Y%d\n' % p)
+            draw_glyph(out, x0, y0, scale, left, strokes)
             x0 += (right - left) * scale
         y0 -= 48 * scale
     out.write('G0 X0 Y0\n')

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates every corpus file under corpora/ from Debian packages:
 #   hershey-fonts-data (Hershey stroke fonts), gnuplot-nox (HP-GL plots),
-#   fonts-dejavu-core and fonts-liberation2 (glyph outlines), libfreetype-dev (rendering).
+#   fonts-dejavu-core, fonts-liberation2 and fonts-urw-base35 (glyph outlines),
+#   libfreetype-dev (rendering), adwaita-icon-theme, librsvg2-bin and netpbm
+#   (icons rasterized to binary images).
 # Needs a built stepzip (build/stepzip) for the stepping of vectors.
 # Usage: corpora/tools/regenerate.sh [path/to/stepzip]
 set -euo pipefail
@@ -12,19 +14,21 @@ out=$root/corpora
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-apt_need=(hershey-fonts-data gnuplot-nox fonts-dejavu-core fonts-liberation2 libfreetype-dev pkg-config g++)
+apt_need=(hershey-fonts-data gnuplot-nox fonts-dejavu-core fonts-liberation2 fonts-urw-base35 adwaita-icon-theme
+          librsvg2-bin netpbm libfreetype-dev pkg-config g++)
 for p in "${apt_need[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
     echo "missing Debian package: $p (apt-get install ${apt_need[*]})" >&2; exit 1; }
 done
 
 g++ -O2 -std=c++20 "$here/trace_glyphs.cpp" $(pkg-config --cflags --libs freetype2) -o "$tmp/trace_glyphs"
+g++ -O2 -std=c++20 "$here/trace_pbm.cpp" -o "$tmp/trace_pbm"
 g++ -O2 -std=c++20 -I"$root/include" "$here/stepper_stream.cpp" "$root"/src/core/*.cpp \
     "$root/src/interpolate/linear.cpp" "$root/src/interpolate/segment.cpp" -o "$tmp/stepper_stream"
 
 hershey=/usr/share/hershey-fonts
 dejavu=/usr/share/fonts/truetype/dejavu
-mkdir -p "$out/plotter" "$out/glyphs" "$out/stepper" "$out/random"
+mkdir -p "$out/plotter" "$out/glyphs" "$out/stepper" "$out/random" "$out/traced"
 
 # Plotter streams: a Hershey specimen sheet and gnuplot's HP-GL plots,
 # stepped by each profile's own interpolator.
@@ -60,6 +64,24 @@ for c in 8 4; do
       "$tmp/trace_glyphs" $liberation/$f.ttf $px $c 33 126 | sed "s|$liberation/||" >> "$out/glyphs/liberation-$c.fc"
     done
   done
+done
+
+# The same page of text in four Hershey fonts that share glyphs, every page
+# at the same place.
+python3 "$here/hershey_pages.py" 2 $hershey/futural.jhf $hershey/rowmans.jhf $hershey/meteorology.jhf \
+    $hershey/greek.jhf > "$tmp/pages.gcode"
+"$stepzip" interpolate --profile grbl "$tmp/pages.gcode" -o "$out/plotter/hershey-pages-grbl.fc" -f
+
+# Large glyphs of a third family: C059 Roman at 256 px, capitals traced
+# 8-connected, small letters 4-connected.
+urw=/usr/share/fonts/opentype/urw-base35
+"$tmp/trace_glyphs" $urw/C059-Roman.otf 256 8 65 90 | sed "s|$urw/||" > "$out/glyphs/c059-8.fc"
+"$tmp/trace_glyphs" $urw/C059-Roman.otf 256 4 97 122 | sed "s|$urw/||" > "$out/glyphs/c059-4.fc"
+
+# Binary images that are not glyphs, by another tracer: the Adwaita
+# theme's symbolic icons of two categories at 64 and 160 px.
+for c in 8 4; do
+  "$here/icon_contours.sh" "$tmp/trace_pbm" $c "64 160" "places emblems" > "$out/traced/icons-$c.fc"
 done
 
 # A four-axis stepper stream (X, Y, Z, A) of an engraving job.

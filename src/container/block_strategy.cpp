@@ -38,6 +38,19 @@ constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
+// From kFastStepLevel, below the thorough levels: a block of
+// kSmallBlockSteps or more that a table block codes is also coded by the
+// segment model when its sample (kModelSampleSteps of whole chains spread
+// over the block, their segments as cut) codes smaller by the segment model
+// than by a table block; the segment model is kept when at least
+// 1/kModelMargin smaller than the table block. It decodes about 2.5 times
+// slower than a table block, so it is kept only where it saves that much:
+// on large glyph contours (3.7 MB, fonts not in corpora/) it saves 5-10 %
+// per block, on plots it does not win (docs/benchmarks.md, "The default
+// level against xz -9e").
+constexpr std::uint64_t kModelSampleSteps = 1u << 15;
+constexpr std::size_t kModelMargin = 32;
+
 std::uint64_t step_count(const Block& block) {
     std::uint64_t n = 0;
     for (const Chain& c : block.chains) n += c.steps.size();
@@ -86,6 +99,65 @@ bool zstd_may_win(std::string_view bytes, const std::string& best) {
     if (best.empty()) return true;
     const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
     return probe.empty() || probe.size() < kZstdReach * best.size();
+}
+
+// The chains of `block` in eight stretches spread evenly over it, about
+// `limit` steps in all: calls take(i, n) for each chain i of a stretch,
+// where n (at least 1) is the number of steps the stretch still wants.
+template <class Take>
+void spread_stretches(const Block& block, std::uint64_t limit, Take take) {
+    constexpr std::uint64_t kStretches = 8;
+    const std::uint64_t total = step_count(block);
+    std::uint64_t at = 0, next = 0, left = 0;
+    const std::uint64_t each = std::max<std::uint64_t>(1, limit / kStretches);
+    for (std::size_t i = 0; i < block.chains.size(); ++i) {
+        const Chain& c = block.chains[i];
+        if (left == 0 && at >= next && next < total) {
+            left = each;
+            next = std::max(next + total / kStretches, at + 1);
+        }
+        at += c.steps.size();
+        if (left == 0) continue;
+        take(i, left);
+        left -= std::min<std::uint64_t>(left, c.steps.size());
+    }
+}
+
+// About `limit` steps of `block` for estimates only: its stretches
+// (spread_stretches), the last chain of each cut short, without its layout.
+Block sample_of(const Block& block, std::uint64_t limit) {
+    Block out;
+    out.axes = block.axes;
+    spread_stretches(block, limit, [&](std::size_t i, std::uint64_t left) {
+        const Chain& c = block.chains[i];
+        Chain piece;
+        piece.axes = c.axes;
+        piece.start = c.start;
+        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, c.steps.size()));
+        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
+        out.chains.push_back(std::move(piece));
+    });
+    return out;
+}
+
+// The whole chains of `block`'s stretches (spread_stretches) with their
+// segments in `cut`: a sample for estimates that needs no second cut.
+void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Block& out, Cut& out_cut) {
+    out.axes = block.axes;
+    spread_stretches(block, limit, [&](std::size_t i, std::uint64_t) {
+        out.chains.push_back(block.chains[i]);
+        out_cut.push_back(cut[i]);
+    });
+}
+
+// Whether the segment model may code `block` (cut as `cut`) smaller than a
+// table block: it does on the block's sample (spread_chains).
+bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const TableEffort& effort) {
+    Block sample;
+    Cut sample_cut;
+    spread_chains(block, cut, kModelSampleSteps, sample, sample_cut);
+    const std::size_t table = write_table_block(sample, p, sample_cut, effort).size();
+    return write_segment_model(sample, p, sample_cut).size() < table;
 }
 
 // Segments every chain of `block` under `p` (cut_block()); errors name the
@@ -228,34 +300,6 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     return smallest_segment_model(block, p, cuts, which, s.timed).size();
 }
 
-// About `limit` steps of `block` for estimates only: eight stretches of
-// whole chains (the last of each cut short) spread evenly over the block,
-// without its layout.
-Block sample_of(const Block& block, std::uint64_t limit) {
-    constexpr std::uint64_t kStretches = 8;
-    Block out;
-    out.axes = block.axes;
-    const std::uint64_t total = step_count(block);
-    std::uint64_t at = 0, next = 0, left = 0;
-    const std::uint64_t each = std::max<std::uint64_t>(1, limit / kStretches);
-    for (const Chain& c : block.chains) {
-        if (left == 0 && at >= next && next < total) {
-            left = each;
-            next = std::max(next + total / kStretches, at + 1);
-        }
-        at += c.steps.size();
-        if (left == 0) continue;
-        Chain piece;
-        piece.axes = c.axes;
-        piece.start = c.start;
-        const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, c.steps.size()));
-        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
-        left -= n;
-        out.chains.push_back(std::move(piece));
-    }
-    return out;
-}
-
 // Below the thorough levels: the segment-model size of the first block's
 // sample under `p` with the segmenter's cut and, but for the patent profile,
 // with the default-phase cut; SIZE_MAX when `p` cannot represent the
@@ -386,14 +430,20 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // segment model, which predicts their phases (FORMAT.md 1.5.1).
         // Nor do the thorough levels code a two-axis block too dense for it
         // (random walks): there the step model wins by 20-25 %.
-        if ((s.thorough || s.timed || job.steps < kSmallBlockSteps) &&
-            (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps)) {
+        // From kFastStepLevel a large block too, where its sample says the
+        // segment model may pay; kept only by a margin (kModelMargin).
+        const bool model_fits = block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps;
+        const bool large_model = model_fits && !s.thorough && !s.timed && s.level >= kFastStepLevel &&
+                                 job.steps >= kSmallBlockSteps && type == kTable &&
+                                 segment_model_may_pay(block, s.profile, segs, table_effort(s.level));
+        if ((s.thorough || s.timed || job.steps < kSmallBlockSteps || large_model) && model_fits) {
             std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
             std::size_t which = 0;
             const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
-            if (model.size() <= kMaxBlockPayload &&
-                consider(kSegmentModel, make_stored_record(kSegmentModel, job.flags, model)))
-                job.cut = cuts[which];
+            std::string rec = model.size() <= kMaxBlockPayload ? make_stored_record(kSegmentModel, job.flags, model)
+                                                               : std::string();
+            if (large_model && rec.size() * kModelMargin > best.size() * (kModelMargin - 1)) rec.clear();
+            if (consider(kSegmentModel, std::move(rec))) job.cut = cuts[which];
             if (s.timed) timed_choice(job, s, cuts, type, best);
         }
     } else if (s.profile_named && block.axes == s.axes) {

@@ -1,0 +1,95 @@
+// Which codings the fast levels choose for a large block (docs/FORMAT.md
+// section 4): from level 3 a block of 2^16 steps or more that a table block
+// codes is coded by the segment model when that is at least 1/32 smaller;
+// below level 3 it stays a table block; where the table block's matches win
+// (the same glyphs again at the same coordinates) it stays one at level 3
+// too. Every frame decodes to its input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "../src/container/memory_io.hpp"
+#include "stepzip/container.hpp"
+
+namespace stepzip {
+namespace {
+
+std::string corpus(const char* rel) {
+    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
+    std::ostringstream s;
+    s << f.rdbuf();
+    EXPECT_FALSE(s.str().empty()) << rel;
+    return s.str();
+}
+
+struct Coded {
+    std::string frame;
+    FrameInfo info;
+};
+
+Coded code(const std::string& input, int level) {
+    CompressOptions opt;
+    opt.level = level;
+    auto z = compress(input, opt);
+    EXPECT_TRUE(z.ok()) << z.error().message;
+    if (!z.ok()) return {};
+    auto back = decompress(*z);
+    EXPECT_TRUE(back.ok()) << back.error().message;
+    if (back.ok()) EXPECT_EQ(*back, input);
+    auto info = inspect_stream(stz::memory_reader(*z));
+    EXPECT_TRUE(info.ok());
+    return {*z, info.ok() ? *info : FrameInfo{}};
+}
+
+TEST(LevelChoice, LargePlotBlockTakesTheSegmentModelFromLevel3) {
+    // 215 960 steps, one block; the segment model is 13 % smaller there.
+    const std::string input = corpus("plotter/hershey-grbl.fc");
+    const Coded two = code(input, 2), three = code(input, 3);
+    EXPECT_EQ(two.info.blocks, 1u);
+    EXPECT_EQ(two.info.table_blocks, 1u);
+    EXPECT_EQ(three.info.blocks, 1u);
+    EXPECT_EQ(three.info.segment_model_blocks, 1u);
+    EXPECT_EQ(three.info.table_blocks, 0u);
+    // kept only by the margin: at least 1/32 smaller than level 2's table
+    // block (the same table effort; the frames differ in the window only)
+    EXPECT_LE(three.frame.size() * 32, two.frame.size() * 31);
+}
+
+TEST(LevelChoice, LevelsBelow3KeepLargeBlocksAsTableBlocks) {
+    const std::string input = corpus("glyphs/dejavu-4.fc");  // 301 042 steps
+    for (int level : {1, 2}) {
+        const Coded c = code(input, level);
+        EXPECT_EQ(c.info.segment_model_blocks, 0u) << level;
+        EXPECT_EQ(c.info.table_blocks, c.info.blocks) << level;
+    }
+    EXPECT_EQ(code(input, 3).info.segment_model_blocks, 1u);
+}
+
+TEST(LevelChoice, RepeatedGlyphsStayATableBlock) {
+    // 84 134 steps: the same page in four Hershey fonts; the table block's
+    // matches over the segment stream find the shared glyphs.
+    const Coded c = code(corpus("plotter/hershey-pages-grbl.fc"), 3);
+    EXPECT_EQ(c.info.blocks, 1u);
+    EXPECT_EQ(c.info.table_blocks, 1u);
+}
+
+TEST(LevelChoice, ManyBlocksRoundTripAndDecodeTheSameAcrossThreads) {
+    // several blocks of the same data: the window passes after the choice
+    const std::string one = corpus("plotter/gnuplot-grbl.fc");
+    const std::string input = one + one + one;  // 1.3 M steps: two blocks
+    CompressOptions opt;
+    opt.level = 3;
+    auto a = compress(input, opt);
+    opt.threads = 2;
+    auto b = compress(input, opt);
+    ASSERT_TRUE(a.ok());
+    ASSERT_TRUE(b.ok());
+    EXPECT_EQ(*a, *b);
+    const Coded c = code(input, 3);
+    EXPECT_GE(c.info.blocks, 2u);
+}
+
+}  // namespace
+}  // namespace stepzip
