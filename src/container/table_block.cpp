@@ -19,6 +19,7 @@
 #include "modeled_block.hpp"
 #include "mtf_list.hpp"
 #include "segment_fields.hpp"
+#include "../interpolate/expand_into.hpp"
 #include "stepzip/interpolate/segment.hpp"
 #include "table_rans.hpp"
 
@@ -308,13 +309,16 @@ public:
     }
 
     // A segment given by shape id `id` (coded by successor or recent rank).
+    // The item refers to the shape's stored segment (segments never move).
     void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
-        const Segment seg = *segs_[shape_[id]];
+        const Segment* seg = segs_[shape_[id]];
         if (from_recent_rank) recent_.to_front(r);
         else recent_.push_front(id);
         succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
-        push_seg(seg);
+        segs_.push_back(seg);
+        hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+        note_fields(*seg);
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
@@ -948,6 +952,17 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
     if (window) coder.prime(*window, false);
+    {
+        // Room for the declared items, within what the payload's size can
+        // plausibly hold (a match of a few bits may copy many items).
+        const std::size_t plausible = 64 * payload.size() + 1024;
+        const auto segs = static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible));
+        coder.segs_.reserve(coder.segs_.size() + segs);
+        coder.hist_.reserve(coder.hist_.size() + segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible)));
+        coder.shape_.reserve(std::min<std::size_t>(segs, 8 * payload.size()));
+        coder.succ_.reserve(std::min<std::size_t>(segs, 8 * payload.size()) + 1);
+        if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, plausible)));
+    }
     if (items) {
         *items = SegmentItems{};
         // As declared, within what the payload's size can plausibly hold.
@@ -965,7 +980,12 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     bool in_chain = false;
     Chain chain;
     Point ref{}, pos{};
-    std::vector<Step> arc_scratch;
+    std::vector<Step> arc_scratch, spill;
+    std::size_t chain_steps = 0;  // steps written into chain.steps (its size runs ahead)
+    // A chain's first allocation: the block's mean chain length (a chain
+    // far shorter is shrunk at its end).
+    const std::size_t first_guess = static_cast<std::size_t>(
+        std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16));
     // Takes history entry `e` (a decoded or copied item) into the output.
     auto take = [&](std::uint32_t e) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
@@ -976,6 +996,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             in_chain = true;
             chain = Chain{};
             chain.axes = axes;
+            chain_steps = 0;
             if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
             pos = chain.start;
             if (items) {
@@ -986,7 +1007,11 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             if (!in_chain) return "chain end outside a chain";
             in_chain = false;
             ref = pos;
-            if (expand) out.chains.push_back(std::move(chain));
+            if (expand) {
+                chain.steps.resize(chain_steps);
+                if (chain.steps.capacity() > 2 * chain_steps + 64) chain.steps.shrink_to_fit();
+                out.chains.push_back(std::move(chain));
+            }
         } else {
             if (!in_chain) return "segment outside a chain";
             const Segment& seg = *coder.segs_[e & kIndexMask];
@@ -996,10 +1021,12 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
                 if (seen_segments == h.nsegments || arc_step_bound(seg.delta[2], seg.delta[3]) > h.nsteps)
                     return "arc may draw more steps than declared";
                 std::vector<Step>& to = expand ? chain.steps : arc_scratch;
+                if (expand) to.resize(chain_steps);
                 const std::size_t before = expand ? to.size() : 0;
                 if (!expand) to.clear();
                 if (!draw_arc_item(seg, to)) return "arc the interpolator refuses";
                 const auto n = static_cast<std::uint64_t>(to.size() - before);
+                if (expand) chain_steps = to.size();
                 if (seen_steps + n > h.nsteps) return "more segments or steps than declared";
                 ++seen_segments;
                 seen_steps += n;
@@ -1017,7 +1044,20 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             ++seen_segments;
             seen_steps += n;
             for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
-            if (expand) expand_segment(p, seg, axes, chain.steps);
+            if (expand) {
+                // The chain's steps grow by doubling; chain_steps are written.
+                const std::size_t need = chain_steps + static_cast<std::size_t>(n);
+                if (chain.steps.size() < need)
+                    chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
+                Step* o = chain.steps.data() + chain_steps;
+                if (!detail::expand_segment_into(p, seg, axes, o)) {
+                    spill.clear();
+                    expand_segment(p, seg, axes, spill);
+                    if (spill.size() != n) return "segment expands to another step count";
+                    std::copy(spill.begin(), spill.end(), o);
+                }
+                chain_steps = need;
+            }
             if (items) {
                 items->segments.push_back(seg);
                 ++items->counts.back();
