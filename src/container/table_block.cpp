@@ -232,9 +232,10 @@ public:
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
-    // nothing else) so that matches may copy them. `canon`: make their
-    // segments canonical (the encoder's cuts may not be).
-    void prime(const WindowView& window, bool canon) {
+    // nothing else) so that matches may copy them. `canon`: the window's
+    // segments in canonical form, in the same order (the encoder's cuts may
+    // not be canonical); null: the window's segments as they are.
+    void prime(const WindowView& window, const Segment* canon) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
             n += b->items.segments.size();
@@ -250,7 +251,7 @@ public:
                 starts_.push_back(w.starts[c]);
                 hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
                 for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    segs_.push_back(canon ? &own_.push_back(canonical(p_, w.segments[k], axes_)) : &w.segments[k]);
+                    segs_.push_back(canon ? canon++ : &w.segments[k]);
                     hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
                 }
                 hist_.push_back(kEndTag);
@@ -754,7 +755,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     EncSide io;
     TableCoder<EncSide> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
-    if (window) coder.prime(*window, true);
+    if (window) coder.prime(*window, cs.data());  // the window's segments come first in cs
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
@@ -951,7 +952,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
-    if (window) coder.prime(*window, false);
+    if (window) coder.prime(*window, nullptr);
     {
         // Room for the declared items, within what the payload's size can
         // plausibly hold (a match of a few bits may copy many items).

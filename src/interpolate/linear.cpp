@@ -40,6 +40,15 @@ void other_ticks(std::int64_t n, std::int64_t s, std::int64_t f0, At at) {
 }
 
 void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other, Step* o) {
+    if (n <= 16) {  // short runs: the rule a tick at a time costs less than the divisions
+        std::int64_t f = f0;
+        for (std::int64_t t = 0; t < n; ++t) {
+            const bool p = f >= 0;
+            o[t] = p ? plain : other;
+            f += p ? -s : n - s;
+        }
+        return;
+    }
     std::fill_n(o, n, plain);
     other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
 }
@@ -71,7 +80,8 @@ bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* mi
 }
 
 // The fast paths of multiaxis_linear (standard variant) into o[0, L):
-// false, and nothing written, where none applies.
+// false, and nothing written, where none applies (a run of more than 8
+// ticks with a phase outside its exact range).
 bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, Step* o) {
     if (axes == 2) {
         const std::int64_t ax = std::llabs(delta[0]), ay = std::llabs(delta[1]);
@@ -98,6 +108,34 @@ bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, St
         minor[nminor] = i;
         s[nminor] = std::llabs(delta[i]);
         ++nminor;
+    }
+    if (l <= 8) {
+        // Short runs: the rule of multiaxis_linear a tick at a time (exact
+        // for every phase), cheaper than the divisions.
+        const auto bits = [&](int axis) { return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis)); };
+        std::int64_t f[kMaxAxes];
+        Step b[kMaxAxes];
+        for (int j = 0; j < nminor; ++j) {
+            f[j] = phases[j];
+            b[j] = bits(minor[j]);
+        }
+        const Step lb = bits(lead);
+        for (std::int64_t t = 0; t < l; ++t) {
+            Step st = lb;
+            for (int j = 0; j < nminor; ++j) {
+                if (s[j] == 0) continue;
+                if (s[j] == l) {
+                    st = static_cast<Step>(st | b[j]);
+                } else if (f[j] >= 0) {
+                    f[j] -= s[j];
+                } else {
+                    st = static_cast<Step>(st | b[j]);
+                    f[j] += l - s[j];
+                }
+            }
+            o[t] = st;
+        }
+        return true;
     }
     return emit_minor_axes(delta, lead, l, minor, s, phases, nminor, o);
 }
