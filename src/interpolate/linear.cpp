@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 
 #include "expand_into.hpp"
 
@@ -13,6 +14,14 @@ namespace stepzip {
 
 namespace {
 int sign(std::int64_t v) { return (v > 0) - (v < 0); }
+
+// o[0, n) = v, four steps a store.
+void fill_steps(Step* o, std::int64_t n, Step v) {
+    const std::uint64_t four = std::uint64_t{v} * 0x0001000100010001ull;
+    std::int64_t t = 0;
+    for (; t + 4 <= n; t += 4) std::memcpy(o + t, &four, sizeof four);
+    for (; t < n; ++t) o[t] = v;
+}
 
 // Fast path shared by the two-letter rules below (not normative: it emits
 // exactly what the per-step loops emit, tests/container_fast_paths_test.cpp
@@ -49,7 +58,7 @@ void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain
         }
         return;
     }
-    std::fill_n(o, n, plain);
+    fill_steps(o, n, plain);
     other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
 }
 // More axes, each minor axis by the rule of emit_two_letter (letter "moves"
@@ -66,7 +75,7 @@ bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* mi
     const auto bits = [&](int axis) {
         return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis));
     };
-    std::fill_n(o, l, bits(lead));
+    fill_steps(o, l, bits(lead));
     for (int j = 0; j < nminor; ++j) {
         const Step b = bits(minor[j]);
         if (s[j] == 0) continue;
@@ -91,7 +100,7 @@ bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, St
         const auto sy = static_cast<Step>(delta[1] > 0 ? 4u : delta[1] < 0 ? 12u : 0u);
         const Step straight = x_leads ? sx : sy, diagonal = static_cast<Step>(sx | sy);
         if (s == 0 || s == l) {
-            std::fill_n(o, l, s == 0 ? straight : diagonal);
+            fill_steps(o, l, s == 0 ? straight : diagonal);
             return true;
         }
         if (phases[0] < -s || phases[0] >= l - s) return false;
@@ -252,7 +261,7 @@ bool expand_segment_into(Profile p, const Segment& seg, int axes, Step* out) {
         case Profile::eval4: {
             const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]), f0 = seg.phase[0];
             if (a == 0 || b == 0) {  // one axis: every step on it (eval_linear forces them)
-                std::fill_n(out, a + b, a == 0 ? make_step2(0, sign(seg.delta[1])) : make_step2(sign(seg.delta[0]), 0));
+                fill_steps(out, a + b, a == 0 ? make_step2(0, sign(seg.delta[1])) : make_step2(sign(seg.delta[0]), 0));
                 return true;
             }
             if (f0 < -b || f0 >= a) return false;
