@@ -1,7 +1,8 @@
 // Per-stage speed, in time per step next to memcpy of the same bytes (the
 // physical limit): parsing of freeman text, points text and STEP/DIR bytes,
 // segmentation (greedy and default-phase cut), expansion of the segments
-// into steps under every profile, rendering back to text/bytes, and the
+// into steps under every profile (appended to a vector, and written into
+// the chain's buffer as the table block's decoder does), rendering back to text/bytes, and the
 // whole compress/decompress pipeline. Inputs are built from the files of
 // corpora/ (run from the source root, or set STEPZIP_CORPORA):
 //   text8 / text4: the 8-connected / 4-connected freeman files concatenated
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "../src/interpolate/expand_into.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/interpolate/segment.hpp"
@@ -269,6 +271,45 @@ void BM_Expand(benchmark::State& state) {
     state.SetLabel(std::string(profile_name(p)));
 }
 BENCHMARK(BM_Expand)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
+
+// Expansion as the table block's decoder does it: each segment written
+// straight into the chain's buffer (detail::expand_segment_into; a segment
+// without a fast path through expand_segment and a copy).
+void BM_ExpandInto(benchmark::State& state) {
+    const auto p = static_cast<Profile>(state.range(0));
+    const Input& in = chains_for(p);
+    if (!usable(state, in)) return;
+    std::string error;
+    const auto segs = cut_all(in, p, BlockCut::greedy, error);
+    if (!error.empty()) {
+        state.SkipWithError(error.c_str());
+        return;
+    }
+    const bool eight = profile_eight_connected(p);
+    std::vector<Step> out(in.steps), spill;
+    std::size_t steps = 0;
+    for (auto _ : state) {
+        steps = 0;
+        for (const auto& chain : segs) {
+            Step* o = out.data();
+            for (const Segment& s : chain) {
+                const auto n = static_cast<std::size_t>(segment_length(s.delta, 2, eight));
+                if (!detail::expand_segment_into(p, s, 2, o)) {
+                    spill.clear();
+                    expand_segment(p, s, 2, spill);
+                    std::memcpy(o, spill.data(), n * sizeof(Step));
+                }
+                o += n;
+            }
+            steps += static_cast<std::size_t>(o - out.data());
+            benchmark::DoNotOptimize(out.data());
+        }
+    }
+    if (steps != in.steps) state.SkipWithError("expansion gives another step count");
+    counters(state, in.steps, in.steps * sizeof(Step));
+    state.SetLabel(std::string(profile_name(p)));
+}
+BENCHMARK(BM_ExpandInto)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 // The whole pipeline in memory, one thread (args: input text8/text4, level).
 void BM_Compress(benchmark::State& state) {

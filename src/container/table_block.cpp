@@ -235,14 +235,16 @@ public:
     // nothing else) so that matches may copy them. `canon`: the window's
     // segments in canonical form, in the same order (the encoder's cuts may
     // not be canonical); null: the window's segments as they are.
-    void prime(const WindowView& window, const Segment* canon) {
+    // `more_segs`, `more_items`: room for the block's own, reserved with the
+    // window's (the decoder's estimate; no copy of the primed history).
+    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
             n += b->items.segments.size();
             c += b->items.starts.size();
         }
-        segs_.reserve(n);
-        hist_.reserve(n + 2 * c);
+        segs_.reserve(n + more_segs);
+        hist_.reserve(n + 2 * c + more_items);
         starts_.reserve(c);
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
@@ -952,14 +954,18 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
-    if (window) coder.prime(*window, nullptr);
     {
         // Room for the declared items, within what the payload's size can
         // plausibly hold (a match of a few bits may copy many items).
         const std::size_t plausible = 64 * payload.size() + 1024;
         const auto segs = static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible));
-        coder.segs_.reserve(coder.segs_.size() + segs);
-        coder.hist_.reserve(coder.hist_.size() + segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible)));
+        const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
+        if (window) {
+            coder.prime(*window, nullptr, segs, hist);
+        } else {
+            coder.segs_.reserve(segs);
+            coder.hist_.reserve(hist);
+        }
         coder.shape_.reserve(std::min<std::size_t>(segs, 8 * payload.size()));
         coder.succ_.reserve(std::min<std::size_t>(segs, 8 * payload.size()) + 1);
         if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, plausible)));
