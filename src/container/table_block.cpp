@@ -968,7 +968,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
         }
         coder.shape_.reserve(std::min<std::size_t>(segs, 8 * payload.size()));
         coder.succ_.reserve(std::min<std::size_t>(segs, 8 * payload.size()) + 1);
-        if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, plausible)));
+        if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
     }
     if (items) {
         *items = SegmentItems{};
