@@ -1,7 +1,8 @@
 // Per-stage speed, in time per step next to memcpy of the same bytes (the
 // physical limit): parsing of freeman text, points text and STEP/DIR bytes,
 // segmentation (greedy and default-phase cut), expansion of the segments
-// into steps under every profile, rendering back to text/bytes, and the
+// into steps under every profile (appended to a vector, and written into
+// the chain's buffer as the table block's decoder does), rendering back to text/bytes, and the
 // whole compress/decompress pipeline. Inputs are built from the files of
 // corpora/ (run from the source root, or set STEPZIP_CORPORA):
 //   text8 / text4: the 8-connected / 4-connected freeman files concatenated
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "../src/interpolate/expand_into.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/interpolate/segment.hpp"
@@ -237,10 +239,14 @@ BENCHMARK(BM_Segment)
     ->Args({4, 3})
     ->Unit(benchmark::kMillisecond);
 
-// Expansion: the greedy segments of every chain expanded back into steps
-// (expand_segment), one chain at a time into a reused vector.
+// Expansion: the greedy segments of every chain expanded back into steps,
+// one chain at a time (args: profile; 0: appended to a reused vector by
+// expand_segment, 1: written straight into the chain's buffer as the table
+// block's decoder does it, detail::expand_segment_into, a segment without
+// a fast path through expand_segment and a copy).
 void BM_Expand(benchmark::State& state) {
     const auto p = static_cast<Profile>(state.range(0));
+    const bool into = state.range(1) != 0;
     const Input& in = chains_for(p);
     if (!usable(state, in)) return;
     std::string error;
@@ -251,24 +257,40 @@ void BM_Expand(benchmark::State& state) {
     }
     std::size_t nsegs = 0;
     for (const auto& s : segs) nsegs += s.size();
-    std::vector<Step> out;
-    out.reserve(1 << 20);
+    const bool eight = profile_eight_connected(p);
+    std::vector<Step> out, spill;
+    if (into) out.resize(in.steps);
+    else out.reserve(1 << 20);
     std::size_t steps = 0;
     for (auto _ : state) {
         steps = 0;
         for (const auto& chain : segs) {
-            out.clear();
-            for (const Segment& s : chain) expand_segment(p, s, 2, out);
-            steps += out.size();
+            if (!into) {
+                out.clear();
+                for (const Segment& s : chain) expand_segment(p, s, 2, out);
+                steps += out.size();
+            } else {
+                Step* o = out.data();
+                for (const Segment& s : chain) {
+                    const auto n = static_cast<std::size_t>(segment_length(s.delta, 2, eight));
+                    if (!detail::expand_segment_into(p, s, 2, o)) {
+                        spill.clear();
+                        expand_segment(p, s, 2, spill);
+                        std::memcpy(o, spill.data(), n * sizeof(Step));
+                    }
+                    o += n;
+                }
+                steps += static_cast<std::size_t>(o - out.data());
+            }
             benchmark::DoNotOptimize(out.data());
         }
     }
     if (steps != in.steps) state.SkipWithError("expansion gives another step count");
     counters(state, in.steps, in.steps * sizeof(Step));
     state.counters["steps/segment"] = static_cast<double>(in.steps) / static_cast<double>(nsegs);
-    state.SetLabel(std::string(profile_name(p)));
+    state.SetLabel(std::string(profile_name(p)) + (into ? " into the chain's buffer" : ""));
 }
-BENCHMARK(BM_Expand)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Expand)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // The whole pipeline in memory, one thread (args: input text8/text4, level).
 void BM_Compress(benchmark::State& state) {

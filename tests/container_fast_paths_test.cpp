@@ -11,6 +11,7 @@
 
 #include <random>
 
+#include "../src/interpolate/expand_into.hpp"
 #include "../src/segment/default_phase_cut.hpp"
 #include "stepzip/interpolate/linear.hpp"
 #include "stepzip/interpolate/segment.hpp"
@@ -144,6 +145,44 @@ TEST(FastExpansion, MoreAxesEqualStepRule) {
         multiaxis_linear(d, axes, ph, fast);
         ASSERT_EQ(fast, multi_steps(d, axes, ph)) << "case " << i;
     }
+}
+
+// The decoders' expansion into a buffer writes exactly what expand_segment
+// appends, wherever it takes a fast path, on every profile, for every
+// total and phase in a range (phases outside the exact range included) and
+// on 3 to 6 axes; it takes one on every two-axis segment with a phase in
+// the exact range, and on every eval4 segment along one axis.
+TEST(FastExpansion, IntoBufferEqualsExpandSegment) {
+    std::mt19937_64 rng(5);
+    std::size_t fast_taken = 0;
+    for (Profile p : kAllProfiles) {
+        const bool eight = profile_eight_connected(p);
+        for (int i = 0; i < 30000; ++i) {
+            const int axes = eight && i % 3 == 0 ? 3 + static_cast<int>(rng() % 4) : 2;
+            const std::int64_t range = i % 5 == 0 ? 300 : 9;
+            Segment seg{};
+            for (int a = 0; a < axes; ++a)
+                seg.delta[a] = static_cast<std::int64_t>(rng() % (2 * range + 1)) - range;
+            const std::int64_t n = segment_length(seg.delta, axes, eight);
+            if (n == 0) continue;
+            for (int j = 0; j + 1 < axes; ++j)
+                seg.phase[j] = -n - 2 + static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(2 * n + 4));
+            if (!check_segment(p, seg, axes)) continue;
+            std::vector<Step> want;
+            expand_segment(p, seg, axes, want);
+            std::vector<Step> got(static_cast<std::size_t>(n), Step{0xFFFF});
+            if (!detail::expand_segment_into(p, seg, axes, got.data())) {
+                const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]);
+                const std::int64_t l = std::max(a, b), s = std::min(a, b);
+                EXPECT_FALSE(axes == 2 && eight && seg.phase[0] >= -s && seg.phase[0] < l - s) << profile_name(p);
+                EXPECT_FALSE(p == Profile::eval4 && (a == 0 || b == 0)) << profile_name(p);
+                continue;
+            }
+            ++fast_taken;
+            ASSERT_EQ(got, want) << profile_name(p) << " case " << i;
+        }
+    }
+    EXPECT_GT(fast_taken, 20000u);
 }
 
 // A chain of segments drawn at the profile's default phase (a controller

@@ -19,6 +19,7 @@
 #include "modeled_block.hpp"
 #include "mtf_list.hpp"
 #include "segment_fields.hpp"
+#include "../interpolate/expand_into.hpp"
 #include "stepzip/interpolate/segment.hpp"
 #include "table_rans.hpp"
 
@@ -231,16 +232,19 @@ public:
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
-    // nothing else) so that matches may copy them. `canon`: make their
-    // segments canonical (the encoder's cuts may not be).
-    void prime(const WindowView& window, bool canon) {
+    // nothing else) so that matches may copy them. `canon`: the window's
+    // segments in canonical form, in the same order (the encoder's cuts may
+    // not be canonical); null: the window's segments as they are.
+    // `more_segs`, `more_items`: room for the block's own, reserved with the
+    // window's (the decoder's estimate; no copy of the primed history).
+    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
             n += b->items.segments.size();
             c += b->items.starts.size();
         }
-        segs_.reserve(n);
-        hist_.reserve(n + 2 * c);
+        segs_.reserve(n + more_segs);
+        hist_.reserve(n + 2 * c + more_items);
         starts_.reserve(c);
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
@@ -249,7 +253,7 @@ public:
                 starts_.push_back(w.starts[c]);
                 hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
                 for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    segs_.push_back(canon ? &own_.push_back(canonical(p_, w.segments[k], axes_)) : &w.segments[k]);
+                    segs_.push_back(canon ? canon++ : &w.segments[k]);
                     hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
                 }
                 hist_.push_back(kEndTag);
@@ -308,13 +312,16 @@ public:
     }
 
     // A segment given by shape id `id` (coded by successor or recent rank).
+    // The item refers to the shape's stored segment (segments never move).
     void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
-        const Segment seg = *segs_[shape_[id]];
+        const Segment* seg = segs_[shape_[id]];
         if (from_recent_rank) recent_.to_front(r);
         else recent_.push_front(id);
         succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
-        push_seg(seg);
+        segs_.push_back(seg);
+        hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+        note_fields(*seg);
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
@@ -750,7 +757,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     EncSide io;
     TableCoder<EncSide> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
-    if (window) coder.prime(*window, true);
+    if (window) coder.prime(*window, cs.data());  // the window's segments come first in cs
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
@@ -947,7 +954,22 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
-    if (window) coder.prime(*window, false);
+    {
+        // Room for the declared items, within what the payload's size can
+        // plausibly hold (a match of a few bits may copy many items).
+        const std::size_t plausible = 64 * payload.size() + 1024;
+        const auto segs = static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible));
+        const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
+        if (window) {
+            coder.prime(*window, nullptr, segs, hist);
+        } else {
+            coder.segs_.reserve(segs);
+            coder.hist_.reserve(hist);
+        }
+        coder.shape_.reserve(std::min<std::size_t>(segs, 8 * payload.size()));
+        coder.succ_.reserve(std::min<std::size_t>(segs, 8 * payload.size()) + 1);
+        if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
+    }
     if (items) {
         *items = SegmentItems{};
         // As declared, within what the payload's size can plausibly hold.
@@ -965,7 +987,12 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     bool in_chain = false;
     Chain chain;
     Point ref{}, pos{};
-    std::vector<Step> arc_scratch;
+    std::vector<Step> arc_scratch, spill;
+    std::size_t chain_steps = 0;  // steps written into chain.steps (its size runs ahead)
+    // A chain's first allocation: the block's mean chain length (a chain
+    // far shorter is shrunk at its end).
+    const std::size_t first_guess = static_cast<std::size_t>(
+        std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16));
     // Takes history entry `e` (a decoded or copied item) into the output.
     auto take = [&](std::uint32_t e) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
@@ -976,6 +1003,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             in_chain = true;
             chain = Chain{};
             chain.axes = axes;
+            chain_steps = 0;
             if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
             pos = chain.start;
             if (items) {
@@ -986,7 +1014,11 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             if (!in_chain) return "chain end outside a chain";
             in_chain = false;
             ref = pos;
-            if (expand) out.chains.push_back(std::move(chain));
+            if (expand) {
+                chain.steps.resize(chain_steps);
+                if (chain.steps.capacity() > 2 * chain_steps + 64) chain.steps.shrink_to_fit();
+                out.chains.push_back(std::move(chain));
+            }
         } else {
             if (!in_chain) return "segment outside a chain";
             const Segment& seg = *coder.segs_[e & kIndexMask];
@@ -996,10 +1028,12 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
                 if (seen_segments == h.nsegments || arc_step_bound(seg.delta[2], seg.delta[3]) > h.nsteps)
                     return "arc may draw more steps than declared";
                 std::vector<Step>& to = expand ? chain.steps : arc_scratch;
+                if (expand) to.resize(chain_steps);
                 const std::size_t before = expand ? to.size() : 0;
                 if (!expand) to.clear();
                 if (!draw_arc_item(seg, to)) return "arc the interpolator refuses";
                 const auto n = static_cast<std::uint64_t>(to.size() - before);
+                if (expand) chain_steps = to.size();
                 if (seen_steps + n > h.nsteps) return "more segments or steps than declared";
                 ++seen_segments;
                 seen_steps += n;
@@ -1017,7 +1051,20 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
             ++seen_segments;
             seen_steps += n;
             for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
-            if (expand) expand_segment(p, seg, axes, chain.steps);
+            if (expand) {
+                // The chain's steps grow by doubling; chain_steps are written.
+                const std::size_t need = chain_steps + static_cast<std::size_t>(n);
+                if (chain.steps.size() < need)
+                    chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
+                Step* o = chain.steps.data() + chain_steps;
+                if (!detail::expand_segment_into(p, seg, axes, o)) {
+                    spill.clear();
+                    expand_segment(p, seg, axes, spill);
+                    if (spill.size() != n) return "segment expands to another step count";
+                    std::copy(spill.begin(), spill.end(), o);
+                }
+                chain_steps = need;
+            }
             if (items) {
                 items->segments.push_back(seg);
                 ++items->counts.back();

@@ -2,7 +2,11 @@
 // seed 002 (multi-axis), seed 004 §6.2.2, patent SU 1089551 forward mode.
 #include "stepzip/interpolate/linear.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
+
+#include "expand_into.hpp"
 
 #include "stepzip/segment.hpp"
 
@@ -10,6 +14,14 @@ namespace stepzip {
 
 namespace {
 int sign(std::int64_t v) { return (v > 0) - (v < 0); }
+
+// o[0, n) = v, four steps a store.
+void fill_steps(Step* o, std::int64_t n, Step v) {
+    const std::uint64_t four = std::uint64_t{v} * 0x0001000100010001ull;
+    std::int64_t t = 0;
+    for (; t + 4 <= n; t += 4) std::memcpy(o + t, &four, sizeof four);
+    for (; t < n; ++t) o[t] = v;
+}
 
 // Fast path shared by the two-letter rules below (not normative: it emits
 // exactly what the per-step loops emit, tests/container_fast_paths_test.cpp
@@ -36,11 +48,17 @@ void other_ticks(std::int64_t n, std::int64_t s, std::int64_t f0, At at) {
     }
 }
 
-void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other,
-                     std::vector<Step>& out) {
-    const std::size_t base = out.size();
-    out.resize(base + static_cast<std::size_t>(n), plain);
-    Step* o = out.data() + base;
+void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other, Step* o) {
+    if (n <= 16) {  // short runs: the rule a tick at a time costs less than the divisions
+        std::int64_t f = f0;
+        for (std::int64_t t = 0; t < n; ++t) {
+            const bool p = f >= 0;
+            o[t] = p ? plain : other;
+            f += p ? -s : n - s;
+        }
+        return;
+    }
+    fill_steps(o, n, plain);
     other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
 }
 // More axes, each minor axis by the rule of emit_two_letter (letter "moves"
@@ -51,15 +69,13 @@ void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain
 // (tests/container_fast_paths_test.cpp compares them); false, and nothing
 // written, otherwise.
 bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* minor, const std::int64_t* s,
-                     const std::int64_t* f0, int nminor, std::vector<Step>& out) {
+                     const std::int64_t* f0, int nminor, Step* o) {
     for (int j = 0; j < nminor; ++j)
         if (s[j] != 0 && s[j] != l && (f0[j] < -s[j] || f0[j] >= l - s[j])) return false;
     const auto bits = [&](int axis) {
         return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis));
     };
-    const std::size_t base = out.size();
-    out.resize(base + static_cast<std::size_t>(l), bits(lead));
-    Step* o = out.data() + base;
+    fill_steps(o, l, bits(lead));
     for (int j = 0; j < nminor; ++j) {
         const Step b = bits(minor[j]);
         if (s[j] == 0) continue;
@@ -71,6 +87,74 @@ bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* mi
     }
     return true;
 }
+
+// The fast paths of multiaxis_linear (standard variant) into o[0, L):
+// false, and nothing written, where none applies (a run of more than 8
+// ticks with a phase outside its exact range).
+bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, Step* o) {
+    if (axes == 2) {
+        const std::int64_t ax = std::llabs(delta[0]), ay = std::llabs(delta[1]);
+        const bool x_leads = ax >= ay;  // the lowest index among the largest
+        const std::int64_t l = x_leads ? ax : ay, s = x_leads ? ay : ax;
+        const auto sx = static_cast<Step>(delta[0] > 0 ? 1u : delta[0] < 0 ? 3u : 0u);
+        const auto sy = static_cast<Step>(delta[1] > 0 ? 4u : delta[1] < 0 ? 12u : 0u);
+        const Step straight = x_leads ? sx : sy, diagonal = static_cast<Step>(sx | sy);
+        if (s == 0 || s == l) {
+            fill_steps(o, l, s == 0 ? straight : diagonal);
+            return true;
+        }
+        if (phases[0] < -s || phases[0] >= l - s) return false;
+        emit_two_letter(l, s, phases[0], straight, diagonal, o);
+        return true;
+    }
+    const int lead = leading_axis(delta, axes);
+    const std::int64_t l = std::llabs(delta[lead]);
+    int minor[kMaxAxes];
+    std::int64_t s[kMaxAxes];
+    int nminor = 0;
+    for (int i = 0; i < axes; ++i) {
+        if (i == lead) continue;
+        minor[nminor] = i;
+        s[nminor] = std::llabs(delta[i]);
+        ++nminor;
+    }
+    if (l <= 8) {
+        // Short runs: the rule of multiaxis_linear a tick at a time (exact
+        // for every phase), cheaper than the divisions.
+        const auto bits = [&](int axis) { return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis)); };
+        std::int64_t f[kMaxAxes];
+        Step b[kMaxAxes];
+        for (int j = 0; j < nminor; ++j) {
+            f[j] = phases[j];
+            b[j] = bits(minor[j]);
+        }
+        const Step lb = bits(lead);
+        for (std::int64_t t = 0; t < l; ++t) {
+            Step st = lb;
+            for (int j = 0; j < nminor; ++j) {
+                if (s[j] == 0) continue;
+                if (s[j] == l) {
+                    st = static_cast<Step>(st | b[j]);
+                } else if (f[j] >= 0) {
+                    f[j] -= s[j];
+                } else {
+                    st = static_cast<Step>(st | b[j]);
+                    f[j] += l - s[j];
+                }
+            }
+            o[t] = st;
+        }
+        return true;
+    }
+    return emit_minor_axes(delta, lead, l, minor, s, phases, nminor, o);
+}
+
+// Room for n more steps at the end of `out`.
+Step* append_room(std::vector<Step>& out, std::int64_t n) {
+    const std::size_t base = out.size();
+    out.resize(base + static_cast<std::size_t>(n));
+    return out.data() + base;
+}
 }  // namespace
 
 void eval_linear(std::int64_t dx, std::int64_t dy, std::int64_t f0, std::vector<Step>& out,
@@ -78,7 +162,7 @@ void eval_linear(std::int64_t dx, std::int64_t dy, std::int64_t f0, std::vector<
     const std::int64_t a = std::llabs(dx), b = std::llabs(dy);
     const Step sx = make_step2(sign(dx), 0), sy = make_step2(0, sign(dy));
     if (!trace && a > 0 && b > 0 && f0 >= -b && f0 < a) {
-        emit_two_letter(a + b, b, f0, sx, sy, out);
+        emit_two_letter(a + b, b, f0, sx, sy, append_room(out, a + b));
         if (forced) *forced = 0;
         return;
     }
@@ -106,7 +190,7 @@ void accelerated_linear(std::int64_t dx, std::int64_t dy, std::int64_t f0, std::
         return;
     }
     if (!trace && f0 >= -s && f0 < l - s) {
-        emit_two_letter(l, s, f0, straight, diagonal, out);
+        emit_two_letter(l, s, f0, straight, diagonal, append_room(out, l));
         return;
     }
     std::int64_t f = f0;
@@ -125,18 +209,10 @@ void multiaxis_linear(const Point& delta, int axes, const std::int64_t* phases,
                       std::vector<Step>& out, MultiAxisVariant variant) {
     const int lead = leading_axis(delta, axes);
     const std::int64_t l = std::llabs(delta[lead]);
-    if (axes == 2 && variant == MultiAxisVariant::standard) {
-        const std::int64_t s = std::llabs(delta[1 - lead]);
-        const Step straight = lead == 0 ? make_step2(sign(delta[0]), 0) : make_step2(0, sign(delta[1]));
-        const Step diagonal = make_step2(sign(delta[0]), sign(delta[1]));
-        if (s == 0 || s == l) {
-            out.insert(out.end(), static_cast<std::size_t>(l), s == 0 ? straight : diagonal);
-            return;
-        }
-        if (phases[0] >= -s && phases[0] < l - s) {
-            emit_two_letter(l, s, phases[0], straight, diagonal, out);
-            return;
-        }
+    if (variant == MultiAxisVariant::standard) {
+        const std::size_t base = out.size();
+        if (multiaxis_fast(delta, axes, phases, append_room(out, l))) return;
+        out.resize(base);
     }
     int minor[kMaxAxes];
     std::int64_t s[kMaxAxes], f[kMaxAxes];
@@ -148,8 +224,6 @@ void multiaxis_linear(const Point& delta, int axes, const std::int64_t* phases,
         f[nminor] = variant == MultiAxisVariant::standard ? phases[nminor] : 0;
         ++nminor;
     }
-    if (variant == MultiAxisVariant::standard && emit_minor_axes(delta, lead, l, minor, s, f, nminor, out))
-        return;
     int d[kMaxAxes] = {};
     for (std::int64_t t = 0; t < l; ++t) {
         d[lead] = sign(delta[lead]);
@@ -179,5 +253,31 @@ void patent_forward(std::int64_t dx, std::int64_t dy, std::int64_t f00, std::vec
         if (trace) trace->push_back(f);
     }
 }
+
+namespace detail {
+
+bool expand_segment_into(Profile p, const Segment& seg, int axes, Step* out) {
+    switch (p) {
+        case Profile::eval4: {
+            const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]), f0 = seg.phase[0];
+            if (a == 0 || b == 0) {  // one axis: every step on it (eval_linear forces them)
+                fill_steps(out, a + b, a == 0 ? make_step2(0, sign(seg.delta[1])) : make_step2(sign(seg.delta[0]), 0));
+                return true;
+            }
+            if (f0 < -b || f0 >= a) return false;
+            emit_two_letter(a + b, b, f0, make_step2(sign(seg.delta[0]), 0), make_step2(0, sign(seg.delta[1])), out);
+            return true;
+        }
+        case Profile::eval8:
+        case Profile::grbl:
+        case Profile::marlin:
+            return multiaxis_fast(seg.delta, axes, seg.phase.data(), out);
+        case Profile::patent:
+            return false;
+    }
+    return false;
+}
+
+}  // namespace detail
 
 }  // namespace stepzip
