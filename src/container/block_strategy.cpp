@@ -21,6 +21,14 @@ namespace {
 constexpr std::uint64_t kSampleSteps = 1u << 15;
 // From kThoroughLevel: steps of the first block's sample that ranks the profiles.
 constexpr std::uint64_t kThoroughSampleSteps = 1u << 17;
+// The thorough levels rank the profiles on kSampleSteps first and try on
+// kThoroughSampleSteps those within 1/kRankMargin of the best there (on
+// corpora/ the winner was always within 1/400 of the best on the small
+// sample; the losers 2-40 % behind, but on 8-connected glyph contours where
+// grbl, marlin and eval8 come within 1 %).
+constexpr std::size_t kRankMargin = 50;
+// Bytes added to that margin (a sample of a few hundred bytes tells little).
+constexpr std::size_t kRankSlack = 32;
 // Segments per 1000 steps below which the segment model always wins and
 // above which the step model always wins (measured on corpora/: 8.6..52
 // against 383..663); in between both are encoded.
@@ -210,9 +218,27 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
+}  // namespace
+
+// What a profile trial made: the segmenter's cut, its statistics and, but
+// on a block too dense for the segment model, the cuts the segment model
+// tried and the smallest model (cuts[which]).
+struct FirstBlockTrial {
+    Profile profile = Profile::eval8;
+    Block block;  // the block the trial coded
+    Cut segs;
+    SegmentStats stats;
+    std::vector<Cut> cuts;
+    std::size_t which = 0;
+    std::string model;
+};
+
+namespace {
+
 // Encoded size of a block under `p` (for --profile auto at the thorough
-// levels); SIZE_MAX when `p` cannot represent it.
-std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& base) {
+// levels); SIZE_MAX when `p` cannot represent it. `trial` receives the cuts
+// and the model when given.
+std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& base, FirstBlockTrial* trial = nullptr) {
     if (!representable(block, p, block.axes)) return SIZE_MAX;
     EncoderSettings s = base;
     s.profile = p;
@@ -223,9 +249,43 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     // (The greedy cut in place of the optimal one did: the 3.7 MB glyph
     // file of docs/benchmarks.md took eval8 instead of marlin, 2.6 % larger.)
     if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
+    if (trial) {
+        *trial = FirstBlockTrial{};
+        trial->profile = p;
+        trial->segs = segs;
+        trial->stats = stats;
+    }
+    // A two-axis block too dense for the segment model (random walks) is
+    // coded by the step model, the same under every profile: such a profile
+    // ranks after every other, by its count of segments (no model is made).
+    if (block.axes == 2) {
+        std::uint64_t nsegs = 0;
+        for (const auto& v : segs) nsegs += v.size();
+        if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX / 2 + nsegs;
+    }
     std::size_t which = 0;
     std::vector<Cut> cuts = model_cuts(block, s, segs, false);
-    return smallest_segment_model(block, p, cuts, which, s.timed).size();
+    std::string model = smallest_segment_model(block, p, cuts, which, s.timed);
+    const std::size_t size = model.size();
+    if (trial) {
+        trial->cuts = std::move(cuts);
+        trial->which = which;
+        trial->model = std::move(model);
+    }
+    return size;
+}
+
+// The trial of `s.profile` on this very block, if the ranking made one.
+const FirstBlockTrial* trial_of(const BlockJob& job, const EncoderSettings& s) {
+    const FirstBlockTrial* t = s.first_trial.get();
+    if (!t || t->profile != s.profile || job.first_chain != 0 || t->block.axes != job.block.axes ||
+        t->block.chains.size() != job.block.chains.size())
+        return nullptr;
+    for (std::size_t i = 0; i < t->block.chains.size(); ++i)
+        if (t->block.chains[i].steps != job.block.chains[i].steps ||
+            t->block.chains[i].start != job.block.chains[i].start)
+            return nullptr;
+    return t;
 }
 
 // About `limit` steps of `block` for estimates only: eight stretches of
@@ -302,13 +362,42 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         const std::uint64_t steps = step_count(first);
         const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
         const Block& trial = steps > kThoroughSampleSteps ? sample : first;
+        // First every profile on a small sample (kSampleSteps); only those
+        // within 1/kRankMargin (+ kRankSlack bytes) of the best there are tried on the trial
+        // (none when one alone is).
+        std::vector<Profile> candidates;
+        {
+            const Block small = steps > kSampleSteps ? sample_of(first, kSampleSteps) : Block{};
+            const Block& probe = steps > kSampleSteps ? small : first;
+            std::size_t sizes[std::size(kAllProfiles)];
+            std::size_t least = SIZE_MAX;
+            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
+                const Profile p = kAllProfiles[i];
+                sizes[i] = representable(first, p, first.axes) ? trial_size(probe, p, s) : SIZE_MAX;
+                least = std::min(least, sizes[i]);
+            }
+            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
+                if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
+                    candidates.push_back(kAllProfiles[i]);
+        }
+        if (candidates.size() == 1) s.profile = candidates[0];
+        // When the trial is the whole block, the winner's cuts and model are
+        // kept for the block's own choice (choose_block()).
+        const bool whole = steps <= kThoroughSampleSteps;
+        auto kept = std::make_shared<FirstBlockTrial>();
+        FirstBlockTrial made;
         std::size_t best = SIZE_MAX;
-        for (Profile p : kAllProfiles) {
-            const std::size_t n = representable(first, p, first.axes) ? trial_size(trial, p, s) : SIZE_MAX;
+        for (Profile p : candidates.size() > 1 ? candidates : std::vector<Profile>{}) {
+            const std::size_t n = trial_size(trial, p, s, whole ? &made : nullptr);
             if (n < best) {
                 best = n;
                 s.profile = p;
+                if (whole) std::swap(*kept, made);
             }
+        }
+        if (whole && best != SIZE_MAX) {
+            kept->block = first;
+            s.first_trial = std::move(kept);
         }
     } else if (!s.thorough && representable(first, s.profile, first.axes)) {
         // One sample picks the profile (auto) and the cut.
@@ -353,7 +442,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // cut, it is the only cut made (the chains were checked by representable()).
         bool aligned = !s.thorough && s.aligned_cut && s.segmenter != SegmenterKind::patent &&
                        aligned_block_cut(block, s.profile, segs);
-        if (!aligned) {
+        const FirstBlockTrial* trial = s.thorough ? trial_of(job, s) : nullptr;
+        if (trial) {
+            segs = trial->segs;
+            job.stats += trial->stats;
+        } else if (!aligned) {
             if (auto r = segment_block(block, s.profile, s.segmenter, segs, job.stats, job.first_chain, s.source); !r) {
                 job.error = std::move(r).error();
                 return;
@@ -388,9 +481,17 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // (random walks): there the step model wins by 20-25 %.
         if ((s.thorough || s.timed || job.steps < kSmallBlockSteps) &&
             (block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps)) {
-            std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
+            std::vector<Cut> cuts;
             std::size_t which = 0;
-            const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
+            std::string model;
+            if (trial && !trial->cuts.empty()) {
+                cuts = trial->cuts;
+                which = trial->which;
+                model = trial->model;
+            } else {
+                cuts = model_cuts(block, s, std::move(segs), aligned);
+                model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
+            }
             if (model.size() <= kMaxBlockPayload &&
                 consider(kSegmentModel, make_stored_record(kSegmentModel, job.flags, model)))
                 job.cut = cuts[which];
