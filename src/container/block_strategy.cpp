@@ -87,12 +87,17 @@ int thorough_step_order(const Block& block) {
 // under kZstdReach times the smallest record so far: on corpora/ the level
 // 19 output is at most 1.8 times smaller than level 6's (trapezoid-2axis;
 // 1.25-1.7 elsewhere) and takes 10-70 times as long.
+// The chain payload (segments, no text) gains less from the level: at most
+// 1.28 times (corpora/random/walk-4.fc; 1.00-1.13 on every other corpus
+// file), so its reach is kChainZstdReach / 2.
 constexpr int kZstdProbeLevel = 6;
 constexpr std::size_t kZstdReach = 2;
+constexpr std::size_t kChainZstdReach = 3;  // halves
 
-bool zstd_may_win(std::string_view bytes, const std::string& best) {
+bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_payload = false) {
     if (best.empty()) return true;
     const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
+    if (chain_payload) return probe.empty() || 2 * probe.size() < kChainZstdReach * best.size();
     return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
@@ -150,7 +155,10 @@ bool representable(const Block& block, Profile p, int axes) {
 // levels also the greedy cut (when the segmenter is another: the fewest
 // segments are not always the cheapest to code) and the default-phase cut.
 // Below them, the default-phase cut alone when the sample chose it.
-std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut segs, bool segs_aligned) {
+// `greedy_differs` (when given) tells whether the greedy cut was added.
+std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut segs, bool segs_aligned,
+                            bool* greedy_differs = nullptr) {
+    if (greedy_differs) *greedy_differs = false;
     std::vector<Cut> cuts;
     if (!s.thorough) {
         Cut aligned;
@@ -160,12 +168,14 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
             cuts.push_back(std::move(segs));
         return cuts;
     }
-    if (s.segmenter != SegmenterKind::greedy) {
+    if (s.segmenter != SegmenterKind::greedy && (s.segmenter != SegmenterKind::optimal || s.optimal_recut)) {
         Cut greedy;
         SegmentStats unused;
         // (the optimal cut keeps the greedy one where it is not better)
-        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs)
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs) {
             cuts.push_back(std::move(greedy));
+            if (greedy_differs) *greedy_differs = true;
+        }
     }
     Cut aligned;
     const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
@@ -231,6 +241,7 @@ struct FirstBlockTrial {
     std::vector<Cut> cuts;
     std::size_t which = 0;
     std::string model;
+    bool optimal_pays = true;  // the optimal segmenter's cut was the greedy one or made the smallest model
 };
 
 namespace {
@@ -264,10 +275,13 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
         if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX / 2 + nsegs;
     }
     std::size_t which = 0;
-    std::vector<Cut> cuts = model_cuts(block, s, segs, false);
+    bool greedy_differs = false;
+    std::vector<Cut> cuts = model_cuts(block, s, segs, false, &greedy_differs);
     std::string model = smallest_segment_model(block, p, cuts, which, s.timed);
     const std::size_t size = model.size();
     if (trial) {
+        // (a cut equal to the greedy one on the trial leaves the question open)
+        trial->optimal_pays = s.segmenter == SegmenterKind::optimal && (!greedy_differs || which == 0);
         trial->cuts = std::move(cuts);
         trial->which = which;
         trial->model = std::move(model);
@@ -362,13 +376,19 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         const std::uint64_t steps = step_count(first);
         const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
         const Block& trial = steps > kThoroughSampleSteps ? sample : first;
-        // First every profile on a small sample (kSampleSteps); only those
-        // within 1/kRankMargin (+ kRankSlack bytes) of the best there are tried on the trial
-        // (none when one alone is).
+        // On a block larger than the trial, every profile first on a small
+        // sample (kSampleSteps); only those within 1/kRankMargin (+
+        // kRankSlack bytes) of the best there are tried on the trial (none
+        // when one alone is). On a smaller block the small sample would cost
+        // a third of the trial and, on 8-connected contours, leave every
+        // profile in.
         std::vector<Profile> candidates;
-        {
-            const Block small = steps > kSampleSteps ? sample_of(first, kSampleSteps) : Block{};
-            const Block& probe = steps > kSampleSteps ? small : first;
+        if (steps <= kThoroughSampleSteps) {
+            for (Profile p : kAllProfiles)
+                if (representable(first, p, first.axes)) candidates.push_back(p);
+        } else {
+            const Block small = sample_of(first, kSampleSteps);
+            const Block& probe = small;
             std::size_t sizes[std::size(kAllProfiles)];
             std::size_t least = SIZE_MAX;
             for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
@@ -380,24 +400,32 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
                 if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
                     candidates.push_back(kAllProfiles[i]);
         }
+        const bool whole = steps <= kThoroughSampleSteps;
         if (candidates.size() == 1) s.profile = candidates[0];
         // When the trial is the whole block, the winner's cuts and model are
-        // kept for the block's own choice (choose_block()).
-        const bool whole = steps <= kThoroughSampleSteps;
+        // kept for the block's own choice (choose_block()). The optimal
+        // segmenter recuts the frame's blocks unless its cut, other than the
+        // greedy one, lost to another cut in the winner's trial: on corpora/
+        // it changed the -L 19 size of one file (plotter/gnuplot-grbl.fc,
+        // 2.3 % smaller) and was 35-90 % of the time of contours and of the
+        // 4-axis log.
         auto kept = std::make_shared<FirstBlockTrial>();
         FirstBlockTrial made;
         std::size_t best = SIZE_MAX;
-        for (Profile p : candidates.size() > 1 ? candidates : std::vector<Profile>{}) {
-            const std::size_t n = trial_size(trial, p, s, whole ? &made : nullptr);
+        for (Profile p : candidates.size() > 1 || whole ? candidates : std::vector<Profile>{}) {
+            const std::size_t n = trial_size(trial, p, s, &made);
             if (n < best) {
                 best = n;
                 s.profile = p;
-                if (whole) std::swap(*kept, made);
+                std::swap(*kept, made);
             }
         }
-        if (whole && best != SIZE_MAX) {
-            kept->block = first;
-            s.first_trial = std::move(kept);
+        if (best != SIZE_MAX) {
+            s.optimal_recut = kept->optimal_pays;
+            if (whole) {
+                kept->block = first;
+                s.first_trial = std::move(kept);
+            }
         }
     } else if (!s.thorough && representable(first, s.profile, first.axes)) {
         // One sample picks the profile (auto) and the cut.
@@ -447,7 +475,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             segs = trial->segs;
             job.stats += trial->stats;
         } else if (!aligned) {
-            if (auto r = segment_block(block, s.profile, s.segmenter, segs, job.stats, job.first_chain, s.source); !r) {
+            const SegmenterKind kind =
+                s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
+            if (auto r = segment_block(block, s.profile, kind, segs, job.stats, job.first_chain, s.source); !r) {
                 job.error = std::move(r).error();
                 return;
             }
@@ -519,7 +549,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
     }
-    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best))
+    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best, true))
         consider(kChains, make_block_record(kChains, job.flags, chain_payload, s.level));
     const bool chain_kind = !best.empty();
     if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {

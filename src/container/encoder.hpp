@@ -54,6 +54,10 @@ struct EncoderSettings {
     bool timed = false;        ///< input format timed: segment-model phases predicted
     std::optional<ArcMethod> arc_method;  ///< also try table blocks of lines and arcs drawn by it
     std::shared_ptr<const FirstBlockTrial> first_trial;  ///< set by choose_frame_settings() (thorough levels)
+    /// The optimal segmenter at the thorough levels: false when its cut made
+    /// no smaller segment model than the greedy cut on the first block's
+    /// trial; the blocks are then cut greedily (set by choose_frame_settings()).
+    bool optimal_recut = true;
 };
 
 /// One block in flight, from the reader to the ordered write.
