@@ -5,12 +5,16 @@
 // strong levels write type 6 blocks only where they are smaller, and the
 // frames decode; the sample that decides whether a large block tries the
 // mixed step model; -L 19's cut (optimal on chains of short segments,
-// greedy on long lines) round-trips.
+// greedy on long lines) round-trips; the hashed tables a thread keeps
+// between predictors come back all zero, and a predictor made while they
+// are taken predicts the same; the profile ranking's trial of the first
+// block gives the bytes the block's own choice gives.
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "../src/container/block_codec.hpp"
@@ -240,6 +244,63 @@ TEST(MixedModels, LevelNineteenCutRoundTripsLongLinesAndShortSegments) {
         ASSERT_TRUE(back.ok()) << back.error().message;
         EXPECT_EQ(*back, input);
     }
+}
+
+}  // namespace
+}  // namespace stepzip::stz
+
+namespace stepzip::stz {
+namespace {
+
+bool thread_tables_clear() {
+    const mixdetail::HashedTables& t = mixdetail::thread_tables();
+    if (t.busy) return false;
+    for (std::size_t i = 0; i < mixdetail::HashedTables::kEntries; ++i)
+        if (t.entries[i].px != 0 || t.entries[i].n != 0) return false;
+    for (std::uint8_t d : t.dirty)
+        if (d != 0) return false;
+    return true;
+}
+
+TEST(MixTables, ThreadTablesComeBackClearAndANestedPredictorCodesTheSame) {
+    const Block a = fixed_block(contours(21, 80)), b = fixed_block(contours(22, 80));
+    // A new thread starts from new tables: the reference coding of `a`.
+    std::string fresh;
+    std::thread([&] { fresh = write_mixed_step_model(a, 1); }).join();
+    ASSERT_FALSE(fresh.empty());
+    std::thread([&] {
+        EXPECT_TRUE(thread_tables_clear());
+        EXPECT_FALSE(write_mixed_step_model(b, 1).empty());
+        EXPECT_TRUE(thread_tables_clear());  // given back cleared where written
+        EXPECT_EQ(write_mixed_step_model(a, 1), fresh);
+        {
+            // While a predictor holds the thread's tables, the next one makes its own.
+            Prob base[16]{};
+            MixPredictor holder(base);
+            EXPECT_TRUE(mixdetail::thread_tables().busy);
+            EXPECT_EQ(write_mixed_step_model(a, 1), fresh);
+        }
+        EXPECT_TRUE(thread_tables_clear());
+    }).join();
+}
+
+TEST(MixedModels, FirstBlockTrialGivesTheBytesOfTheBlocksOwnChoice) {
+    // One block (under the trial's size): with --profile auto the ranking's
+    // cuts and model of the winner are reused; named, the block makes them.
+    const std::string input = contours(23, 300);
+    CompressOptions opt;
+    opt.level = 19;
+    auto z = compress(input, opt);
+    ASSERT_TRUE(z.ok()) << z.error().message;
+    auto info = inspect_stream(memory_reader(*z));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    opt.profile = info->profile;
+    auto named = compress(input, opt);
+    ASSERT_TRUE(named.ok()) << named.error().message;
+    EXPECT_EQ(*z, *named);
+    auto back = decompress(*z);
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    EXPECT_EQ(*back, input);
 }
 
 }  // namespace

@@ -21,6 +21,14 @@ namespace {
 constexpr std::uint64_t kSampleSteps = 1u << 15;
 // From kThoroughLevel: steps of the first block's sample that ranks the profiles.
 constexpr std::uint64_t kThoroughSampleSteps = 1u << 17;
+// The thorough levels rank the profiles on kSampleSteps first and try on
+// kThoroughSampleSteps those within 1/kRankMargin of the best there (on
+// corpora/ the winner was always within 1/400 of the best on the small
+// sample; the losers 2-40 % behind, but on 8-connected glyph contours where
+// grbl, marlin and eval8 come within 1 %).
+constexpr std::size_t kRankMargin = 50;
+// Bytes added to that margin (a sample of a few hundred bytes tells little).
+constexpr std::size_t kRankSlack = 32;
 // Segments per 1000 steps below which the segment model always wins and
 // above which the step model always wins (measured on corpora/: 8.6..52
 // against 383..663); in between both are encoded.
@@ -92,12 +100,17 @@ int thorough_step_order(const Block& block) {
 // under kZstdReach times the smallest record so far: on corpora/ the level
 // 19 output is at most 1.8 times smaller than level 6's (trapezoid-2axis;
 // 1.25-1.7 elsewhere) and takes 10-70 times as long.
+// The chain payload (segments, no text) gains less from the level: at most
+// 1.28 times (corpora/random/walk-4.fc; 1.00-1.13 on every other corpus
+// file), so its reach is kChainZstdReach / 2.
 constexpr int kZstdProbeLevel = 6;
 constexpr std::size_t kZstdReach = 2;
+constexpr std::size_t kChainZstdReach = 3;  // halves
 
-bool zstd_may_win(std::string_view bytes, const std::string& best) {
+bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_payload = false) {
     if (best.empty()) return true;
     const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
+    if (chain_payload) return probe.empty() || 2 * probe.size() < kChainZstdReach * best.size();
     return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
@@ -214,7 +227,10 @@ bool representable(const Block& block, Profile p, int axes) {
 // levels also the greedy cut (when the segmenter is another: the fewest
 // segments are not always the cheapest to code) and the default-phase cut.
 // Below them, the default-phase cut alone when the sample chose it.
-std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut segs, bool segs_aligned) {
+// `greedy_differs` (when given) tells whether the greedy cut was added.
+std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut segs, bool segs_aligned,
+                            bool* greedy_differs = nullptr) {
+    if (greedy_differs) *greedy_differs = false;
     std::vector<Cut> cuts;
     if (!s.thorough) {
         Cut aligned;
@@ -224,12 +240,14 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
             cuts.push_back(std::move(segs));
         return cuts;
     }
-    if (s.segmenter != SegmenterKind::greedy) {
+    if (s.segmenter != SegmenterKind::greedy && (s.segmenter != SegmenterKind::optimal || s.optimal_recut)) {
         Cut greedy;
         SegmentStats unused;
         // (the optimal cut keeps the greedy one where it is not better)
-        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs)
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs) {
             cuts.push_back(std::move(greedy));
+            if (greedy_differs) *greedy_differs = true;
+        }
     }
     Cut aligned;
     const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
@@ -282,9 +300,28 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
+}  // namespace
+
+// What a profile trial made: the segmenter's cut, its statistics and, but
+// on a block too dense for the segment model, the cuts the segment model
+// tried and the smallest model (cuts[which]).
+struct FirstBlockTrial {
+    Profile profile = Profile::eval8;
+    Block block;  // the block the trial coded
+    Cut segs;
+    SegmentStats stats;
+    std::vector<Cut> cuts;
+    std::size_t which = 0;
+    std::string model;
+    bool optimal_pays = true;  // the optimal segmenter's cut was the greedy one or made the smallest model
+};
+
+namespace {
+
 // Encoded size of a block under `p` (for --profile auto at the thorough
-// levels); SIZE_MAX when `p` cannot represent it.
-std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& base) {
+// levels); SIZE_MAX when `p` cannot represent it. `trial` receives the cuts
+// and the model when given.
+std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& base, FirstBlockTrial* trial = nullptr) {
     if (!representable(block, p, block.axes)) return SIZE_MAX;
     EncoderSettings s = base;
     s.profile = p;
@@ -295,9 +332,46 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     // (The greedy cut in place of the optimal one did: the 3.7 MB glyph
     // file of docs/benchmarks.md took eval8 instead of marlin, 2.6 % larger.)
     if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
+    if (trial) {
+        *trial = FirstBlockTrial{};
+        trial->profile = p;
+        trial->segs = segs;
+        trial->stats = stats;
+    }
+    // A two-axis block too dense for the segment model (random walks) is
+    // coded by the step model, the same under every profile: such a profile
+    // ranks after every other, by its count of segments (no model is made).
+    if (block.axes == 2) {
+        std::uint64_t nsegs = 0;
+        for (const auto& v : segs) nsegs += v.size();
+        if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX / 2 + nsegs;
+    }
     std::size_t which = 0;
-    std::vector<Cut> cuts = model_cuts(block, s, segs, false);
-    return smallest_segment_model(block, p, cuts, which, s.timed).size();
+    bool greedy_differs = false;
+    std::vector<Cut> cuts = model_cuts(block, s, segs, false, &greedy_differs);
+    std::string model = smallest_segment_model(block, p, cuts, which, s.timed);
+    const std::size_t size = model.size();
+    if (trial) {
+        // (a cut equal to the greedy one on the trial leaves the question open)
+        trial->optimal_pays = s.segmenter == SegmenterKind::optimal && (!greedy_differs || which == 0);
+        trial->cuts = std::move(cuts);
+        trial->which = which;
+        trial->model = std::move(model);
+    }
+    return size;
+}
+
+// The trial of `s.profile` on this very block, if the ranking made one.
+const FirstBlockTrial* trial_of(const BlockJob& job, const EncoderSettings& s) {
+    const FirstBlockTrial* t = s.first_trial.get();
+    if (!t || t->profile != s.profile || job.first_chain != 0 || t->block.axes != job.block.axes ||
+        t->block.chains.size() != job.block.chains.size())
+        return nullptr;
+    for (std::size_t i = 0; i < t->block.chains.size(); ++i)
+        if (t->block.chains[i].steps != job.block.chains[i].steps ||
+            t->block.chains[i].start != job.block.chains[i].start)
+            return nullptr;
+    return t;
 }
 
 // Below the thorough levels: the segment-model size of the first block's
@@ -346,12 +420,55 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         const std::uint64_t steps = step_count(first);
         const Block sample = steps > kThoroughSampleSteps ? sample_of(first, kThoroughSampleSteps) : Block{};
         const Block& trial = steps > kThoroughSampleSteps ? sample : first;
+        // On a block larger than the trial, every profile first on a small
+        // sample (kSampleSteps); only those within 1/kRankMargin (+
+        // kRankSlack bytes) of the best there are tried on the trial (none
+        // when one alone is). On a smaller block the small sample would cost
+        // a third of the trial and, on 8-connected contours, leave every
+        // profile in.
+        std::vector<Profile> candidates;
+        if (steps <= kThoroughSampleSteps) {
+            for (Profile p : kAllProfiles)
+                if (representable(first, p, first.axes)) candidates.push_back(p);
+        } else {
+            const Block small = sample_of(first, kSampleSteps);
+            const Block& probe = small;
+            std::size_t sizes[std::size(kAllProfiles)];
+            std::size_t least = SIZE_MAX;
+            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
+                const Profile p = kAllProfiles[i];
+                sizes[i] = representable(first, p, first.axes) ? trial_size(probe, p, s) : SIZE_MAX;
+                least = std::min(least, sizes[i]);
+            }
+            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
+                if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
+                    candidates.push_back(kAllProfiles[i]);
+        }
+        const bool whole = steps <= kThoroughSampleSteps;
+        if (candidates.size() == 1) s.profile = candidates[0];
+        // When the trial is the whole block, the winner's cuts and model are
+        // kept for the block's own choice (choose_block()). The optimal
+        // segmenter recuts the frame's blocks unless its cut, other than the
+        // greedy one, lost to another cut in the winner's trial: on corpora/
+        // it changed the -L 19 size of one file (plotter/gnuplot-grbl.fc,
+        // 2.3 % smaller) and was 35-90 % of the time of contours and of the
+        // 4-axis log.
+        auto kept = std::make_shared<FirstBlockTrial>();
+        FirstBlockTrial made;
         std::size_t best = SIZE_MAX;
-        for (Profile p : kAllProfiles) {
-            const std::size_t n = representable(first, p, first.axes) ? trial_size(trial, p, s) : SIZE_MAX;
+        for (Profile p : candidates.size() > 1 || whole ? candidates : std::vector<Profile>{}) {
+            const std::size_t n = trial_size(trial, p, s, &made);
             if (n < best) {
                 best = n;
                 s.profile = p;
+                std::swap(*kept, made);
+            }
+        }
+        if (best != SIZE_MAX) {
+            s.optimal_recut = kept->optimal_pays;
+            if (whole) {
+                kept->block = first;
+                s.first_trial = std::move(kept);
             }
         }
     } else if (!s.thorough && representable(first, s.profile, first.axes)) {
@@ -397,8 +514,14 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // cut, it is the only cut made (the chains were checked by representable()).
         bool aligned = !s.thorough && s.aligned_cut && s.segmenter != SegmenterKind::patent &&
                        aligned_block_cut(block, s.profile, segs);
-        if (!aligned) {
-            if (auto r = segment_block(block, s.profile, s.segmenter, segs, job.stats, job.first_chain, s.source); !r) {
+        const FirstBlockTrial* trial = s.thorough ? trial_of(job, s) : nullptr;
+        if (trial) {
+            segs = trial->segs;
+            job.stats += trial->stats;
+        } else if (!aligned) {
+            const SegmenterKind kind =
+                s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
+            if (auto r = segment_block(block, s.profile, kind, segs, job.stats, job.first_chain, s.source); !r) {
                 job.error = std::move(r).error();
                 return;
             }
@@ -437,9 +560,17 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                                  job.steps >= kSmallBlockSteps && type == kTable &&
                                  segment_model_may_pay(block, s.profile, segs, table_effort(s.level));
         if ((s.thorough || s.timed || job.steps < kSmallBlockSteps || large_model) && model_fits) {
-            std::vector<Cut> cuts = model_cuts(block, s, std::move(segs), aligned);
+            std::vector<Cut> cuts;
             std::size_t which = 0;
-            const std::string model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
+            std::string model;
+            if (trial && !trial->cuts.empty()) {
+                cuts = trial->cuts;
+                which = trial->which;
+                model = trial->model;
+            } else {
+                cuts = model_cuts(block, s, std::move(segs), aligned);
+                model = smallest_segment_model(block, s.profile, cuts, which, s.timed);
+            }
             std::string rec = model.size() <= kMaxBlockPayload ? make_stored_record(kSegmentModel, job.flags, model)
                                                                : std::string();
             if (large_model && rec.size() * kModelMargin > best.size() * (kModelMargin - 1)) rec.clear();
@@ -468,7 +599,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
     }
-    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best))
+    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best, true))
         consider(kChains, make_block_record(kChains, job.flags, chain_payload, s.level));
     const bool chain_kind = !best.empty();
     if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {

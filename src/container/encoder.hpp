@@ -34,6 +34,11 @@ inline constexpr std::uint64_t kMixSampleSteps = 1u << 15;
 /// kMixSampleSteps steps are at least 1/32 smaller mixed than plain (order 1).
 bool mixed_step_model_pays(const Block& block);
 
+/// The thorough levels' profile ranking, when it coded the whole first
+/// block: the winning profile's cuts and segment model, which the first
+/// block's own choice takes instead of making them again.
+struct FirstBlockTrial;
+
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {
     Profile profile = Profile::eval8;
@@ -48,6 +53,11 @@ struct EncoderSettings {
     int window_log = 0;        ///< the frame's window (0: none)
     bool timed = false;        ///< input format timed: segment-model phases predicted
     std::optional<ArcMethod> arc_method;  ///< also try table blocks of lines and arcs drawn by it
+    std::shared_ptr<const FirstBlockTrial> first_trial;  ///< set by choose_frame_settings() (thorough levels)
+    /// The optimal segmenter at the thorough levels: false when its cut made
+    /// no smaller segment model than the greedy cut on the first block's
+    /// trial; the blocks are then cut greedily (set by choose_frame_settings()).
+    bool optimal_recut = true;
 };
 
 /// One block in flight, from the reader to the ordered write.

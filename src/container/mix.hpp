@@ -12,13 +12,15 @@
 // `MixEncIo` / `MixDecIo` stand in for `EncIo` / `DecIo`: the same coder
 // templates run with either, so a type 6 payload and a type 3/4 payload
 // differ only in the probabilities given to the range coder.
-// Complexity: O(kMixMaxModels) per bit; memory ~ kMixModels * 4 MiB + 4 MiB.
-// Not thread-safe (one predictor per block).
+// Complexity: O(kMixMaxModels) per bit; memory ~ kMixModels * 4 MiB + 4 MiB
+// (the hashed tables kept per thread, see thread_tables()).
+// Not thread-safe: a predictor is made, used and destroyed by one thread.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <vector>
@@ -88,9 +90,54 @@ struct HashedProb {
     pr.n = static_cast<std::uint16_t>(pr.n + (pr.n < 255));
 }
 
-struct FreeDeleter {
-    void operator()(void* p) const noexcept { std::free(p); }
+// The hashed tables of all models: kMixMaxModels << kMixTableBits entries,
+// all zero (p = 32768, n = 0) when a predictor takes them. Dirty flags of
+// 2^kChunkBits entries (64 KiB) tell which parts a predictor wrote, so that
+// giving the tables back clears only those.
+struct HashedTables {
+    static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMaxModels) << kMixTableBits;
+    static constexpr int kChunkBits = 14;
+    static constexpr std::size_t kChunks = kEntries >> kChunkBits;
+
+    HashedTables() {
+        // calloc of a fresh block this large maps zero pages that cost only
+        // where they are touched; the entries are aligned to cache lines so
+        // that a row of 16 (one slot group) is one line.
+        raw_ = std::calloc(kEntries * sizeof(HashedProb) + 64, 1);
+        if (!raw_) throw std::bad_alloc();
+        const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(raw_) + 63) & ~std::uintptr_t{63};
+        entries = reinterpret_cast<HashedProb*>(a);
+    }
+    HashedTables(const HashedTables&) = delete;
+    HashedTables& operator=(const HashedTables&) = delete;
+    ~HashedTables() { std::free(raw_); }
+
+    /// Back to all zero: only the chunks flagged dirty are cleared.
+    void clear() noexcept {
+        for (std::size_t c = 0; c < kChunks; ++c)
+            if (dirty[c]) {
+                std::memset(static_cast<void*>(entries + (c << kChunkBits)), 0, sizeof(HashedProb) << kChunkBits);
+                dirty[c] = 0;
+            }
+    }
+
+    HashedProb* entries = nullptr;
+    std::array<std::uint8_t, kChunks> dirty{};
+    bool busy = false;
+
+private:
+    void* raw_ = nullptr;
 };
+
+// The tables of the calling thread, kept from one predictor to the next
+// (a block's trials and its proof build several predictors in turn; new
+// tables each time cost a page fault per 4 KiB touched, more than the
+// coding of a small block). A predictor made while another of the same
+// thread holds them gets tables of its own.
+inline HashedTables& thread_tables() {
+    thread_local HashedTables tables;
+    return tables;
+}
 }  // namespace mixdetail
 
 /// Stretched probability of a 1, p1 in 1..65535 (16-bit).
@@ -103,20 +150,32 @@ class MixPredictor {
 public:
     /// kMixMaxModels hashed context models; `base`: the coder's table of
     /// primary contexts (a decision's slot is its primary context's index in it).
-    explicit MixPredictor(const Prob* base)
-        : base_(base),
-          tables_(static_cast<mixdetail::HashedProb*>(std::calloc(static_cast<std::size_t>(n_) << kMixTableBits,
-                                                        sizeof(mixdetail::HashedProb)))),
-          apm_(static_cast<std::size_t>(kApmRows) * 33) {
-        if (!tables_) throw std::bad_alloc();
+    explicit MixPredictor(const Prob* base) : base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
+        mixdetail::HashedTables& shared = mixdetail::thread_tables();
+        if (shared.busy) {
+            own_ = std::make_unique<mixdetail::HashedTables>();
+            store_ = own_.get();
+        } else {
+            store_ = &shared;
+        }
+        store_->busy = true;
+        tables_ = store_->entries;
+        dirty_ = store_->dirty.data();
         for (int s = 0; s < 2 * kMixSets; ++s) {
             std::int32_t* w = &weights_[static_cast<std::size_t>(s) * kInputs];
             w[0] = kPrimaryWeight;
             for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
         }
-        for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows); ++r)
-            for (int j = 0; j < 33; ++j) apm_[r * 33 + static_cast<std::size_t>(j)] =
-                static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        // Every row of the map starts the same.
+        for (int j = 0; j < 33; ++j) apm_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        for (std::size_t r = 1; r < static_cast<std::size_t>(kApmRows); ++r)
+            std::memcpy(&apm_[r * 33], &apm_[0], 33 * sizeof(std::uint16_t));
+    }
+    MixPredictor(const MixPredictor&) = delete;
+    MixPredictor& operator=(const MixPredictor&) = delete;
+    ~MixPredictor() {
+        store_->clear();
+        store_->busy = false;
     }
 
     /// The context of hashed model k (0 <= k < kMixMaxModels) until it is set again.
@@ -138,6 +197,7 @@ public:
             const std::size_t i = ((static_cast<std::size_t>(k) << kMixTableBits) |
                                    (static_cast<std::size_t>(h >> (64 - (kMixTableBits - 4))) << 4)) | low;
             entry_[static_cast<std::size_t>(k)] = &tables_[i];
+            dirty_[i >> mixdetail::HashedTables::kChunkBits] = 1;
             x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p());
         }
         x_[static_cast<std::size_t>(n_) + 1] = 256;
@@ -205,7 +265,10 @@ private:
 
     static constexpr int n_ = kMixMaxModels;
     const Prob* base_;
-    std::unique_ptr<mixdetail::HashedProb[], mixdetail::FreeDeleter> tables_;  // calloc: pages on first touch
+    std::unique_ptr<mixdetail::HashedTables> own_;  // when the thread's tables are taken
+    mixdetail::HashedTables* store_ = nullptr;
+    mixdetail::HashedProb* tables_ = nullptr;
+    std::uint8_t* dirty_ = nullptr;
     std::vector<std::uint16_t> apm_;
     std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
     std::array<std::uint64_t, kMixMaxModels> hash_{};
