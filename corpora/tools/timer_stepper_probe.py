@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Probe: how much of a timed STEP/DIR log a timer-interrupt stepper model
+reproduces exactly (a measurement prototype, not the codec).
+
+Model: the stepper interrupt fires every P CPU cycles, P constant within a
+stepper segment of N interrupts (N a multiple of 2^L); with step-smoothing
+level L (0..LMAX) the Bresenham increments are steps << (LMAX - L) against
+a threshold of event_count << LMAX, counters starting at half of it and
+carried across the segments of a planner block; the step computed in
+interrupt i (1..N) leaves in tick floor((c + (i - 1 + DELTA)·P) / C_TICK),
+c the cycle of the interrupt that loaded the segment, and the next segment
+is loaded at c + N·P. The planner blocks' step counts are taken from the
+g-code job (targets rounded to steps in single precision, as an AVR does),
+so only the timing is fitted: per segment L, P and N are searched so that
+the regenerated steps match the log tick for tick, keeping the cycle c as
+an interval of the values every match so far allows.
+
+Usage: timer_stepper_probe.py LOG JOB.nc [DELTA [C_TICK [LMAX [STEPS_MM]]]]
+Prints the segments fitted (block, L, P, N, steps matched, width of the
+cycle interval) and where the fit first fails.
+"""
+import sys, math, struct
+f32=lambda x: struct.unpack('f',struct.pack('f',x))[0]
+def lround(x): return int(math.floor(x+0.5)) if x>=0 else -int(math.floor(-x+0.5))
+d = open(sys.argv[1], 'rb').read(); nc = open(sys.argv[2]).read().split('\n')
+arg = lambda i, v: int(sys.argv[i]) if len(sys.argv) > i else v
+DELTA = arg(3, 1); CT = arg(4, 640); LMAX = arg(5, 3); SPM = arg(6, 100)
+pos = [0, 0]; blocks = []
+for line in nc:
+    if not line.startswith(('G0 ', 'G1 ')): continue
+    tgt = list(pos)
+    for w in line.split()[1:]:
+        tgt['XY'.index(w[0])] = lround(f32(f32(float(w[1:]))*float(SPM)))
+    dd = [tgt[0]-pos[0], tgt[1]-pos[1]]
+    if any(dd): blocks.append(dd)
+    pos = tgt
+evt=[]; evm=[]
+for t, b in enumerate(d):
+    m = (b & 1) | ((b >> 1) & 2)
+    if m: evt.append(t); evm.append(m)
+NA = 2
+def gen(cnt, S, E, L, u_left, limit):
+    """interrupt indices with masks: list of (i, mask, cnt_after, u_after)"""
+    inc=[s<<(LMAX-L) for s in S]; thr=E<<LMAX; cnt=list(cnt); du=1<<(LMAX-L); i=0; out=[]
+    while u_left >= du and len(out) < limit:
+        i+=1; u_left-=du; mask=0
+        for a in range(NA):
+            cnt[a]+=inc[a]
+            if cnt[a]>thr: cnt[a]-=thr; mask|=1<<a
+        if mask: out.append((i, mask, tuple(cnt), u_left))
+    return out, i, tuple(cnt), u_left
+def boxwalk(clo, chi, plo, phi, evs, k):
+    m=0
+    for (i, mask, _, _) in evs:
+        if k+m >= len(evt) or evm[k+m] != mask: break
+        t=evt[k+m]; j=i-1+DELTA
+        if j == 0:
+            lo_c, hi_c = max(clo, CT*t), min(chi, CT*t+CT-1)
+            if lo_c > hi_c: break
+            clo, chi = lo_c, hi_c
+        else:
+            lo = -((chi - CT*t)//j); hi = (CT*t+CT-1-clo)//j
+            if max(plo, lo) > min(phi, hi): break
+            plo, phi = max(plo, lo), min(phi, hi)
+        m+=1
+    return m, plo, phi
+def cwalk(clo, chi, P, evs, k):
+    res=[]; m=0
+    for (i, mask, cnt, ul) in evs:
+        if k+m >= len(evt) or evm[k+m] != mask: break
+        t=evt[k+m]; j=i-1+DELTA
+        lo, hi = CT*t - j*P, CT*t+CT-1 - j*P
+        clo, chi = max(clo, lo), min(chi, hi)
+        if clo > chi: break
+        m+=1; res.append((m, clo, chi, i, cnt, ul))
+    return res
+LIM = 4000
+def quick(clo, chi, cnt, S, E, k, u_left):
+    best=0
+    for L in range(LMAX+1):
+        evs = gen(cnt, S, E, L, u_left, 80)[0]
+        best=max(best, boxwalk(clo, chi, 1, 1<<22, evs, k)[0])
+    return best
+
+AMASS = {}  # level -> [min, max] cycles per step seen where the level was the only fit
+def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
+    cand=[]
+    for L in range(LMAX+1):
+        evs, _, _, _ = gen(cnt, S, E, L, u_left, LIM)
+        if not evs: continue
+        m0, plo, phi = boxwalk(cint[0], cint[1], 1, 1<<22, evs, k)
+        if m0 == 0: continue
+        if phi - plo > 64:
+            mid=(plo+phi)//2; Ps=range(mid-32, mid+33)
+        else: Ps=range(plo, phi+1)
+        du=1<<(LMAX-L)
+        for P in Ps:
+            res = cwalk(cint[0], cint[1], P, evs, k)
+            if not res: continue
+            mmax=res[-1][0]
+            inext = evs[mmax][0] if mmax < len(evs) else res[-1][3] + res[-1][5]//du + 1
+            top = min(inext-1, res[-1][3] + res[-1][5]//du)
+            Ns=[n for n in range(top - top % (1<<L), 0, -(1<<L))][:4]
+            for N in Ns:
+                pre=[r for r in res if r[3] <= N]
+                if not pre: continue
+                m, clo, chi = pre[-1][0], pre[-1][1], pre[-1][2]
+                ul = u_left - N*du
+                if ul < 0: continue
+                cn = pre[-1][4]; extra = N - pre[-1][3]
+                inc=[s<<(LMAX-L) for s in S]; cn=list(cn)
+                for _ in range(extra):
+                    for a in range(NA): cn[a]+=inc[a]
+                cn=tuple(cn)
+                nc_ = (clo+N*P, chi+N*P)
+                if k+m >= len(evt): sc = m
+                elif ul == 0:
+                    if nxt is None: sc = m
+                    else:
+                        S2=[abs(v) for v in nxt]; E2=max(S2)
+                        sc = m + quick(nc_[0], nc_[1], tuple([(E2<<LMAX)>>1]*NA), S2, E2, k+m, E2<<LMAX)
+                else: sc = m + quick(nc_[0], nc_[1], cn, S, E, k+m, ul)
+                cand.append((sc, L, P, N, m, nc_, cn, ul))
+    if not cand: return None
+    top = max(x[0] for x in cand)
+    cand = [x for x in cand if x[0] == top]
+    levels = sorted(set(x[1] for x in cand))
+    if len(levels) == 1:
+        for x in cand:
+            r = AMASS.setdefault(x[1], [x[2] << x[1], x[2] << x[1]])
+            r[0] = min(r[0], x[2] << x[1]); r[1] = max(r[1], x[2] << x[1])
+    def off(x):  # distance of the cycles per step from the range seen at that level
+        r = AMASS.get(x[1])
+        if r is None: return 1 << 40
+        cps = x[2] << x[1]
+        return max(0, r[0] - cps, cps - r[1])
+    L = min(cand, key=off)[1]
+    cand = [x for x in cand if x[1] == L]
+    best = list(cand[0])
+    for x in cand[1:]:
+        if (x[3], x[4], x[6], x[7]) == (best[3], best[4], best[6], best[7]):
+            best[5] = (min(best[5][0], x[5][0]), max(best[5][1], x[5][1]))
+    return best
+segs=[]; k=0; cint=None
+for bi, b in enumerate(blocks):
+    S=[abs(v) for v in b]; E=max(S); cnt=tuple([(E<<LMAX)>>1]*NA); u_left=E<<LMAX
+    while u_left > 0:
+        if cint is None:
+            cands=[]
+            for L in range(LMAX+1):
+                evs = gen(cnt, S, E, L, u_left, 400)[0]
+                if len(evs) < 2 or evs[0][1] != evm[k] or evs[1][1] != evm[k+1]: continue
+                di = evs[1][0]-evs[0][0]; dt = evt[k+1]-evt[k]
+                for P in range(max(1,(dt-1)*CT//di), (dt+1)*CT//di+2):
+                    res = cwalk(-(1<<50), 1<<50, P, evs, k)
+                    if res: cands.append((res[-1][0], L, P, res[-1][1], res[-1][2]))
+            mb = max(x[0] for x in cands)
+            top=[x for x in cands if x[0] == mb]
+            per = {}
+            for x in top: per.setdefault(x[1], []).append(x)
+            top = [v[len(v) // 2] for v in per.values()]
+            bestc=None
+            for x in top:
+                st=(k, (x[3], x[4]), cnt, u_left); got=0
+                for _ in range(3):
+                    if st[3] <= 0: break
+                    r = seg_step(S, E, st[0], st[1], st[2], st[3])
+                    if r is None: break
+                    st=(st[0]+r[4], r[5], r[6], r[7])
+                got = st[0]
+                if bestc is None or got > bestc[0]: bestc=(got, x)
+            cint=(bestc[1][3], bestc[1][4])
+            print('start', bi, k, len(top), bestc, file=sys.stderr)
+        best = seg_step(S, E, k, cint, cnt, u_left, blocks[bi+1] if bi+1 < len(blocks) else None)
+        if best is None:
+            print('fail block', bi, 'k', k, 'tick', evt[k], file=sys.stderr); break
+        sc, L, P, N, m, cint, cnt, u_left = best
+        segs.append((bi, L, P, N, m, cint[1]-cint[0]))
+        k+=m
+    else:
+        continue
+    break
+for x in segs: print(*x)
+print('segments', len(segs), 'step ticks explained', k, 'of', len(evt))
