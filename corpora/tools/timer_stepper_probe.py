@@ -15,9 +15,15 @@ so only the timing is fitted: per segment L, P and N are searched so that
 the regenerated steps match the log tick for tick, keeping the cycle c as
 an interval of the values every match so far allows.
 
-Usage: timer_stepper_probe.py LOG JOB.nc [DELTA [C_TICK [LMAX [STEPS_MM]]]]
+Per segment the candidates are ranked by how many steps they and the next
+segment (of the same or the next block) match; when no candidate goes on,
+the search backs up to earlier segments' other candidates. With THRESHOLDS
+(cycles per step at which levels 1, 2, ... begin, e.g. 2000,4000,8000) a
+segment's L must be the one its cycles per step select.
+
+Usage: timer_stepper_probe.py LOG JOB.nc [DELTA [C_TICK [LMAX [STEPS_MM [THRESHOLDS]]]]]
 Prints the segments fitted (block, L, P, N, steps matched, width of the
-cycle interval) and where the fit first fails.
+cycle interval), then how far the fit reached.
 """
 import sys, math, struct
 f32=lambda x: struct.unpack('f',struct.pack('f',x))[0]
@@ -74,7 +80,7 @@ def cwalk(clo, chi, P, evs, k):
         if clo > chi: break
         m+=1; res.append((m, clo, chi, i, cnt, ul))
     return res
-LIM = 4000
+LIM = 300
 def quick(clo, chi, cnt, S, E, k, u_left):
     best=0
     for L in range(LMAX+1):
@@ -82,6 +88,13 @@ def quick(clo, chi, cnt, S, E, k, u_left):
         best=max(best, boxwalk(clo, chi, 1, 1<<22, evs, k)[0])
     return best
 
+THR = [int(v) for v in sys.argv[7].split(',')] if len(sys.argv) > 7 else None
+def rule_ok(L, P):
+    if THR is None: return True
+    lo, hi = P << L, (P << L) + (1 << L) - 1  # the cycles per step P was shifted from
+    tl = THR[L - 1] if L > 0 else 0
+    th = THR[L] if L < len(THR) else 1 << 62
+    return lo < th and hi >= tl
 AMASS = {}  # level -> [min, max] cycles per step seen where the level was the only fit
 def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
     cand=[]
@@ -98,7 +111,7 @@ def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
             res = cwalk(cint[0], cint[1], P, evs, k)
             if not res: continue
             mmax=res[-1][0]
-            inext = evs[mmax][0] if mmax < len(evs) else res[-1][3] + res[-1][5]//du + 1
+            inext = evs[mmax][0] if mmax < len(evs) else (evs[-1][0] + 1 if len(evs) == LIM else res[-1][3] + res[-1][5]//du + 1)
             top = min(inext-1, res[-1][3] + res[-1][5]//du)
             Ns=[n for n in range(top - top % (1<<L), 0, -(1<<L))][:4]
             for N in Ns:
@@ -123,10 +136,10 @@ def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
                 cand.append((sc, L, P, N, m, nc_, cn, ul))
     if not cand: return None
     top = max(x[0] for x in cand)
-    cand = [x for x in cand if x[0] == top]
-    levels = sorted(set(x[1] for x in cand))
+    best_only = [x for x in cand if x[0] == top]
+    levels = sorted(set(x[1] for x in best_only))
     if len(levels) == 1:
-        for x in cand:
+        for x in best_only:
             r = AMASS.setdefault(x[1], [x[2] << x[1], x[2] << x[1]])
             r[0] = min(r[0], x[2] << x[1]); r[1] = max(r[1], x[2] << x[1])
     def off(x):  # distance of the cycles per step from the range seen at that level
@@ -134,51 +147,57 @@ def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
         if r is None: return 1 << 40
         cps = x[2] << x[1]
         return max(0, r[0] - cps, cps - r[1])
-    L = min(cand, key=off)[1]
-    cand = [x for x in cand if x[1] == L]
-    best = list(cand[0])
-    for x in cand[1:]:
-        if (x[3], x[4], x[6], x[7]) == (best[3], best[4], best[6], best[7]):
-            best[5] = (min(best[5][0], x[5][0]), max(best[5][1], x[5][1]))
-    return best
-segs=[]; k=0; cint=None
-for bi, b in enumerate(blocks):
-    S=[abs(v) for v in b]; E=max(S); cnt=tuple([(E<<LMAX)>>1]*NA); u_left=E<<LMAX
-    while u_left > 0:
-        if cint is None:
-            cands=[]
-            for L in range(LMAX+1):
-                evs = gen(cnt, S, E, L, u_left, 400)[0]
-                if len(evs) < 2 or evs[0][1] != evm[k] or evs[1][1] != evm[k+1]: continue
-                di = evs[1][0]-evs[0][0]; dt = evt[k+1]-evt[k]
-                for P in range(max(1,(dt-1)*CT//di), (dt+1)*CT//di+2):
-                    res = cwalk(-(1<<50), 1<<50, P, evs, k)
-                    if res: cands.append((res[-1][0], L, P, res[-1][1], res[-1][2]))
-            mb = max(x[0] for x in cands)
-            top=[x for x in cands if x[0] == mb]
-            per = {}
-            for x in top: per.setdefault(x[1], []).append(x)
-            top = [v[len(v) // 2] for v in per.values()]
-            bestc=None
-            for x in top:
-                st=(k, (x[3], x[4]), cnt, u_left); got=0
-                for _ in range(3):
-                    if st[3] <= 0: break
-                    r = seg_step(S, E, st[0], st[1], st[2], st[3])
-                    if r is None: break
-                    st=(st[0]+r[4], r[5], r[6], r[7])
-                got = st[0]
-                if bestc is None or got > bestc[0]: bestc=(got, x)
-            cint=(bestc[1][3], bestc[1][4])
-            print('start', bi, k, len(top), bestc, file=sys.stderr)
-        best = seg_step(S, E, k, cint, cnt, u_left, blocks[bi+1] if bi+1 < len(blocks) else None)
-        if best is None:
-            print('fail block', bi, 'k', k, 'tick', evt[k], file=sys.stderr); break
-        sc, L, P, N, m, cint, cnt, u_left = best
-        segs.append((bi, L, P, N, m, cint[1]-cint[0]))
-        k+=m
-    else:
+    groups = {}
+    for x in cand:
+        key = (x[1], x[3], x[4], x[6], x[7])
+        if key in groups:
+            g = groups[key]; g[5] = (min(g[5][0], x[5][0]), max(g[5][1], x[5][1]))
+        else: groups[key] = list(x)
+    vals = [x for x in groups.values() if rule_ok(x[1], x[2])]
+    return sorted(vals, key=lambda x: (-x[0], off(x)))[:6]
+def start_interval(S, E, k, cnt, u_left):
+    cands=[]
+    for L in range(LMAX+1):
+        evs = gen(cnt, S, E, L, u_left, 400)[0]
+        if len(evs) < 2 or evs[0][1] != evm[k] or evs[1][1] != evm[k+1]: continue
+        di = evs[1][0]-evs[0][0]; dt = evt[k+1]-evt[k]
+        for P in range(max(1,(dt-1)*CT//di), (dt+1)*CT//di+2):
+            res = cwalk(-(1<<50), 1<<50, P, evs, k)
+            if res: cands.append((res[-1][0], L, P, res[-1][1], res[-1][2]))
+    mb = max(x[0] for x in cands)
+    top=[x for x in cands if x[0] == mb]
+    return (min(x[3] for x in top), max(x[4] for x in top))
+def fresh(bi):
+    S=[abs(v) for v in blocks[bi]]; E=max(S)
+    return tuple([(E<<LMAX)>>1]*NA), E<<LMAX
+cnt0, ul0 = fresh(0)
+S0=[abs(v) for v in blocks[0]]
+stack=[dict(bi=0, k=0, cint=start_interval(S0, max(S0), 0, cnt0, ul0), cnt=cnt0, ul=ul0, cands=None, idx=0, seg=None)]
+best_k=0; best_stack=None; since=0; backtracks=0
+while stack:
+    f=stack[-1]
+    if f['k'] >= len(evt) or f['bi'] >= len(blocks): best_stack=list(stack); best_k=f['k']; break
+    if f['cands'] is None:
+        S=[abs(v) for v in blocks[f['bi']]]; E=max(S)
+        nxt = blocks[f['bi']+1] if f['bi']+1 < len(blocks) else None
+        f['cands'] = seg_step(S, E, f['k'], f['cint'], f['cnt'], f['ul'], nxt) or []
+    if f['idx'] >= len(f['cands']) or since > 400:
+        stack.pop(); backtracks += 1; since += 1
+        if since > 400: break
         continue
-    break
+    sc, L, P, N, m, nc_, cn, ul = f['cands'][f['idx']]; f['idx'] += 1
+    seg=(f['bi'], L, P, N, m, nc_[1]-nc_[0])
+    if ul == 0:
+        c2, u2 = fresh(f['bi']+1) if f['bi']+1 < len(blocks) else ((), 0)
+        nf=dict(bi=f['bi']+1, k=f['k']+m, cint=nc_, cnt=c2, ul=u2, cands=None, idx=0, seg=seg)
+    else:
+        nf=dict(bi=f['bi'], k=f['k']+m, cint=nc_, cnt=cn, ul=ul, cands=None, idx=0, seg=seg)
+    stack.append(nf)
+    if nf['k'] > best_k: best_k=nf['k']; best_stack=list(stack); since=0
+    else: since+=1
+segs=[f['seg'] for f in best_stack[1:]]
+print('levels', sorted(AMASS.items()), file=sys.stderr)
+k=best_k
+print('backtracks', backtracks, 'stopped at block', best_stack[-1]['bi'], 'tick', evt[k] if k < len(evt) else None, file=sys.stderr)
 for x in segs: print(*x)
 print('segments', len(segs), 'step ticks explained', k, 'of', len(evt))
