@@ -21,7 +21,10 @@ the search backs up to earlier segments' other candidates. With THRESHOLDS
 (cycles per step at which levels 1, 2, ... begin, e.g. 2000,4000,8000) a
 segment's L must be the one its cycles per step select.
 
-Usage: timer_stepper_probe.py LOG JOB.nc [DELTA [C_TICK [LMAX [STEPS_MM [THRESHOLDS]]]]]
+JOB is the g-code of a 2-axis job or the --report JSON of timed_stream.py
+(its moves' steps, any axis count).
+
+Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [DELTA [C_TICK [LMAX [STEPS_MM [THRESHOLDS]]]]]
 Prints the segments fitted (block, L, P, N, steps matched, width of the
 cycle interval), then how far the fit reached.
 """
@@ -32,6 +35,10 @@ d = open(sys.argv[1], 'rb').read(); nc = open(sys.argv[2]).read().split('\n')
 arg = lambda i, v: int(sys.argv[i]) if len(sys.argv) > i else v
 DELTA = arg(3, 1); CT = arg(4, 640); LMAX = arg(5, 3); SPM = arg(6, 100)
 pos = [0, 0]; blocks = []
+if sys.argv[2].endswith('.json'):  # a timed_stream.py --report: the moves' steps
+    import json
+    blocks = [b['steps'] for b in json.loads('\n'.join(nc))]
+    nc = []
 for line in nc:
     if not line.startswith(('G0 ', 'G1 ')): continue
     tgt = list(pos)
@@ -42,9 +49,9 @@ for line in nc:
     pos = tgt
 evt=[]; evm=[]
 for t, b in enumerate(d):
-    m = (b & 1) | ((b >> 1) & 2)
+    m = (b & 1) | ((b >> 1) & 2) | ((b >> 2) & 4)  # the STEP bits 0, 2, 4 of axes 0, 1, 2
     if m: evt.append(t); evm.append(m)
-NA = 2
+NA = len(blocks[0])
 def gen(cnt, S, E, L, u_left, limit):
     """interrupt indices with masks: list of (i, mask, cnt_after, u_after)"""
     inc=[s<<(LMAX-L) for s in S]; thr=E<<LMAX; cnt=list(cnt); du=1<<(LMAX-L); i=0; out=[]
