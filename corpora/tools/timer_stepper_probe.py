@@ -10,7 +10,7 @@ carried across the segments of a planner block; the step computed in
 interrupt i (1..N) leaves in tick floor((c + (i - 1 + DELTA)·P) / C_TICK),
 c the cycle of the interrupt that loaded the segment, and the next segment
 is loaded at c + N·P. The planner blocks' step counts are taken from the
-g-code job (targets rounded to steps in single precision, as an AVR does),
+g-code job (targets read and rounded to steps in single precision),
 so only the timing is fitted: per segment L, P and N are searched so that
 the regenerated steps match the log tick for tick, keeping the cycle c as
 an interval of the values every match so far allows.
@@ -30,6 +30,17 @@ cycle interval), then how far the fit reached.
 """
 import sys, math, struct
 f32=lambda x: struct.unpack('f',struct.pack('f',x))[0]
+def read_float(text):
+    """A decimal as a single-precision g-code reader makes it: the digits as
+    an integer, then scaled by 0.01 and 0.1 (double constants, the result
+    stored as single)."""
+    neg = text.startswith('-'); text = text.lstrip('+-')
+    whole, _, frac = text.partition('.')
+    v = f32(float(int(whole + frac))); e = -len(frac)
+    if v != 0:
+        while e <= -2: v = f32(v * 0.01); e += 2
+        if e < 0: v = f32(v * 0.1)
+    return -v if neg else v
 def lround(x): return int(math.floor(x+0.5)) if x>=0 else -int(math.floor(-x+0.5))
 d = open(sys.argv[1], 'rb').read(); nc = open(sys.argv[2]).read().split('\n')
 arg = lambda i, v: int(sys.argv[i]) if len(sys.argv) > i else v
@@ -43,7 +54,7 @@ for line in nc:
     if not line.startswith(('G0 ', 'G1 ')): continue
     tgt = list(pos)
     for w in line.split()[1:]:
-        tgt['XY'.index(w[0])] = lround(f32(f32(float(w[1:]))*float(SPM)))
+        tgt['XY'.index(w[0])] = lround(f32(read_float(w[1:]) * f32(float(SPM))))
     dd = [tgt[0]-pos[0], tgt[1]-pos[1]]
     if any(dd): blocks.append(dd)
     pos = tgt
@@ -180,7 +191,7 @@ def fresh(bi):
 cnt0, ul0 = fresh(0)
 S0=[abs(v) for v in blocks[0]]
 stack=[dict(bi=0, k=0, cint=start_interval(S0, max(S0), 0, cnt0, ul0), cnt=cnt0, ul=ul0, cands=None, idx=0, seg=None)]
-best_k=0; best_stack=None; since=0; backtracks=0
+best_k=0; best_stack=None; since=0; backtracks=0; shown=0
 while stack:
     f=stack[-1]
     if f['k'] >= len(evt) or f['bi'] >= len(blocks): best_stack=list(stack); best_k=f['k']; break
@@ -200,7 +211,11 @@ while stack:
     else:
         nf=dict(bi=f['bi'], k=f['k']+m, cint=nc_, cnt=cn, ul=ul, cands=None, idx=0, seg=seg)
     stack.append(nf)
-    if nf['k'] > best_k: best_k=nf['k']; best_stack=list(stack); since=0
+    if nf['k'] > best_k:
+        best_k=nf['k']; best_stack=list(stack); since=0
+        if nf['bi'] >= shown + 25:
+            shown = nf['bi']
+            print('block', shown, 'step ticks', best_k, 'segments', len(stack) - 1, file=sys.stderr, flush=True)
     else: since+=1
 segs=[f['seg'] for f in best_stack[1:]]
 print('levels', sorted(AMASS.items()), file=sys.stderr)
