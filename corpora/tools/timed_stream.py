@@ -22,7 +22,12 @@ controller does it:
   AMASS-like smoothing: below rate thresholds the interrupt runs 2, 4 or 8
   times faster and the Bresenham increments shrink accordingly;
 - a move's DIR levels are set in the interrupt that starts it (an axis the
-  move does not step is driven to 0), steps come from the next interrupt on.
+  move does not step is driven to 0), steps come from the next interrupt on;
+  with --pipeline instead (as Grbl orders its interrupt) the interrupt that
+  loads a move computes its first step event, and every step and the DIR
+  levels leave with the next interrupt;
+- --amass-levels 0 turns the smoothing off; --period-unit K rounds periods
+  above K cycles down to a multiple of K (a timer prescaler of K).
 
 Output: one byte per tick of --tick-us, bit 2i = axis i stepped in the tick,
 bit 2i+1 = axis i DIR level (1 = negative) at the end of the tick; the
@@ -34,6 +39,7 @@ leading axis) is written too.
 Usage: timed_stream.py [--axes 2|3] [--seed N] [--shapes N] [--steps-mm X]
                        [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM] [--scurve]
                        [--tick-us US] [--segment-ms MS] [--cpu-mhz MHZ]
+                       [--amass-levels 0-3] [--pipeline] [--period-unit K]
                        [--report FILE] > out.steps
 """
 import argparse
@@ -170,17 +176,24 @@ def run(blocks, a):
     cpu = a.cpu_mhz * 1e6
     tick_cycles = a.tick_us * a.cpu_mhz
     seg_s = a.segment_ms / 1000
-    amass_limits = [cpu / 8000, cpu / 4000, cpu / 2000]  # rate thresholds in cycles per step
+    # Rate thresholds in cycles per step: level l runs the interrupt 2^l times per step.
+    amass_limits = [cpu / 8000, cpu / 4000, cpu / 2000][:a.amass_levels]
+    top = a.amass_levels  # the Bresenham counters' scale: steps << top
     events = []  # (cycle, step mask, dir levels)
     cycle = 0
     dirs = 0
+    pending = 0  # --pipeline: the step mask computed in the last interrupt, output in the next
+    out_dirs = 0  # --pipeline: the DIR levels the pins show (set at a load, output one interrupt later)
     for b in blocks:
         d = b['d']
         count = max(abs(v) for v in d)
         new_dirs = sum(1 << i for i in range(a.axes) if d[i] < 0)
-        events.append((cycle, 0, new_dirs))  # DIR set in the interrupt that loads the move
-        dirs = new_dirs
-        counters = [count << 3 >> 1] * a.axes
+        if a.pipeline:
+            dirs = new_dirs  # output with the next interrupt's step bits
+        else:
+            events.append((cycle, 0, new_dirs))  # DIR set in the interrupt that loads the move
+            dirs = new_dirs
+        counters = [count << top >> 1] * a.axes
         done = 0
         t = 0.0
         total = position(b, 0.0)[1]
@@ -196,21 +209,38 @@ def run(blocks, a):
             period = max(1, int(round((min(t_end, total) - t) * cpu / n)))
             level = sum(1 for lim in amass_limits if period > lim)
             isr = period >> level
+            if isr > a.period_unit:
+                isr -= isr % a.period_unit  # a timer prescaler: the period in whole timer counts
             for _ in range(n << level):
-                cycle += isr
                 mask = 0
                 for i in range(a.axes):
-                    counters[i] += (abs(d[i]) << 3) >> level
-                    if counters[i] > (count << 3):
-                        counters[i] -= count << 3
+                    counters[i] += (abs(d[i]) << top) >> level
+                    if counters[i] > (count << top):
+                        counters[i] -= count << top
                         mask |= 1 << i
-                if mask:
-                    events.append((cycle, mask, dirs))
+                if a.pipeline:
+                    events.append((cycle, pending, out_dirs))
+                    out_dirs, pending = dirs, mask
+                    cycle += isr
+                else:
+                    cycle += isr
+                    if mask:
+                        events.append((cycle, mask, dirs))
             done += n
             t = min(t_end, total)
-        cycle += isr
+        if not a.pipeline:
+            cycle += isr
+    if a.pipeline:
+        events.append((cycle, pending, out_dirs))
     # Bin into ticks, from the first step's tick to the last step's tick.
     steps = [e for e in events if e[1]]
+    if a.pipeline:  # keep the interrupts that step or change DIR
+        kept, level = [], 0
+        for e in events:
+            if e[1] or e[2] != level:
+                kept.append(e)
+            level = e[2]
+        events = kept
     first = int(steps[0][0] // tick_cycles)
     last = int(steps[-1][0] // tick_cycles)
     out = bytearray(last - first + 1)
@@ -247,6 +277,13 @@ def main():
     p.add_argument('--segment-ms', type=float, default=10.0)
     p.add_argument('--cpu-mhz', type=int, default=16)
     p.add_argument('--scurve', action='store_true', help='S-shaped (smoothstep) speed ramps')
+    p.add_argument('--amass-levels', type=int, default=3, choices=[0, 1, 2, 3],
+                   help='step-smoothing levels (0: off, the interrupt runs at the step rate)')
+    p.add_argument('--pipeline', action='store_true',
+                   help='steps and DIR leave in the interrupt after the one that computes them, '
+                        'the first step event of a move computed in the interrupt that loads it')
+    p.add_argument('--period-unit', type=int, default=1,
+                   help='interrupt periods above this many cycles are a multiple of it (a timer prescaler)')
     p.add_argument('--report')
     a = p.parse_args()
     for name in ('steps_mm', 'rate', 'accel'):
