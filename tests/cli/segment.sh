@@ -35,9 +35,9 @@ grep -q 'patent approximation mode: 1 segment(s) read out, 0 reproduce' note.txt
 [ ! -s note.txt ] || fail "-q still printed: $(cat note.txt)"
 # ... the same from stdin, and as JSON with the deviation statistics
 got=$(echo '0 0 02002002000' | "$BIN" segment --segmenter patent --to json -q) || fail "patent json: exit $?"
-echo "$got" | grep -q '"exact":false' || fail "patent json: not marked inexact: $got"
-echo "$got" | grep -q '"delta":\[8,3\]' || fail "patent json: no (8,3) segment: $got"
-echo "$got" | grep -q '"patent_max_deviation":' || fail "patent json: no deviation: $got"
+grep -q '"exact":false' <<< "$got" || fail "patent json: not marked inexact: $got"
+grep -q '"delta":\[8,3\]' <<< "$got" || fail "patent json: no (8,3) segment: $got"
+grep -q '"patent_max_deviation":' <<< "$got" || fail "patent json: no deviation: $got"
 
 # exact segmenters: the output vectors, interpolated again, give the chain back
 echo '0 0 0020020020' >patent.fc

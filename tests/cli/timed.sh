@@ -19,7 +19,8 @@ for f in "$src"/corpora/timed/*.steps; do
     "$stepzip" decompress -q -f "$work/t.stz" -o "$work/t.out"
     cmp -s "$work/t.out" "$f" || { echo "FAIL decompress differs -L $level: $f"; fail=1; }
   done
-  "$stepzip" info "$work/t.stz" | grep -q '^input format: *timed$' || { echo "FAIL info format: $f"; fail=1; }
+  info=$("$stepzip" info "$work/t.stz")
+  grep -q '^input format: *timed$' <<< "$info" || { echo "FAIL info format: $f"; fail=1; }
 done
 f=$src/corpora/timed/trapezoid-2axis.steps
 # An unknown format name is a usage error naming it.
