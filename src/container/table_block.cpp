@@ -196,17 +196,23 @@ Segment canonical(Profile p, const Segment& s, int axes) {
     return c;
 }
 
-template <class Io>
+// kAxes: the axis count fixed at compile time (the decoder's loop for two
+// axes), 0: given at run time.
+template <class Io, int kAxes = 0>
 class TableCoder {
 public:
-    TableCoder(Io& io, Profile p, int axes) : io_(io), p_(p), axes_(axes), phases_(phase_count(p, axes)) {
+    TableCoder(Io& io, Profile p, int axes) : io_(io), p_(p), axes_(kAxes ? kAxes : axes), phases_(phase_count(p, axes)) {
         succ_.resize(1);  // succ_[0]: after no shape
     }
 
     Io& io_;
     Profile p_;
-    int axes_;
+    const int axes_;
     int phases_;
+    // The axis count, a constant in the two-axis decoder.
+    constexpr int ax() const { return kAxes ? kAxes : axes_; }
+    // Phases a segment has: one on two axes under every profile.
+    constexpr int phases() const { return kAxes == 2 ? 1 : phases_; }
     std::int64_t grid_ = 1;
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
@@ -284,7 +290,7 @@ public:
 
     // A chain start: the delta over the grid per axis.
     bool code_start(const Point& want, Point& delta) {
-        for (int i = 0; i < axes_; ++i) {
+        for (int i = 0; i < ax(); ++i) {
             const std::uint64_t v = code_uint(kTStart + (i != 0), Io::kDecode ? 0 : zig(want[i] / grid_));
             delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(unzig(v)) * static_cast<std::uint64_t>(grid_));
         }
@@ -332,11 +338,11 @@ public:
     }
 
     void note_fields(const Segment& seg) {
-        const int lead = leading_axis(seg.delta, axes_);
+        const int lead = leading_axis(seg.delta, ax());
         unsigned neg = 0;
-        for (int i = 0; i < axes_; ++i)
+        for (int i = 0; i < ax(); ++i)
             if (seg.delta[i] < 0) neg |= 1u << i;
-        if (axes_ == 2) {
+        if (ax() == 2) {
             const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
             prev_turn_ = (oct - prev_oct_) & 7;
             prev_oct_ = oct;
@@ -346,7 +352,7 @@ public:
         }
         prev_l_ = std::llabs(seg.delta[lead]);
         int j = 0;
-        for (int i = 0; i < axes_; ++i)
+        for (int i = 0; i < ax(); ++i)
             if (i != lead) prev_s_[static_cast<std::size_t>(j++)] = std::llabs(seg.delta[i]);
     }
 
@@ -356,7 +362,7 @@ public:
         int lead = 0;
         unsigned neg = 0;
         int turn = 0;
-        if (axes_ == 2) {
+        if (ax() == 2) {
             turn = static_cast<int>(op - kOpFull);
             const int code = kCodeOfOctant[(prev_oct_ + turn) & 7];
             lead = code >> 2;
@@ -367,8 +373,8 @@ public:
             if (op == kOpFull + 1) {
                 unsigned w = 0;
                 if constexpr (!Io::kDecode) {
-                    const int wl = leading_axis(want->delta, axes_);
-                    for (int i = 0; i < axes_; ++i)
+                    const int wl = leading_axis(want->delta, ax());
+                    for (int i = 0; i < ax(); ++i)
                         if (want->delta[i] < 0) w |= 1u << i;
                     w |= static_cast<unsigned>(wl) << 6;
                 }
@@ -377,7 +383,7 @@ public:
             }
             lead = static_cast<int>(dir >> 6);
             neg = dir & 63u;
-            if (lead >= axes_ || (neg >> axes_) != 0) return fail("bad direction");
+            if (lead >= ax() || (neg >> ax()) != 0) return fail("bad direction");
         }
         const int lctx = cap(std::bit_width(static_cast<std::uint64_t>(prev_l_)), 7) * 2 + (turn != 0);
         const std::uint64_t l1 =
@@ -387,7 +393,7 @@ public:
         const int bl = cap(std::bit_width(static_cast<std::uint64_t>(l)), 11);
         Segment seg{};
         int j = 0;
-        for (int i = 0; i < axes_; ++i) {
+        for (int i = 0; i < ax(); ++i) {
             std::int64_t v = l;
             if (i != lead) {
                 const std::int64_t pred = predict_minor(l, prev_s_[static_cast<std::size_t>(j)], prev_l_);
@@ -401,8 +407,8 @@ public:
             if (!apply_sign(v, neg, i)) return fail("sign on a resting axis");
             seg.delta[i] = v;
         }
-        for (int k = 0; k < phases_; ++k) {
-            const auto ab = *phase_arguments(p_, seg, axes_, k);
+        for (int k = 0; k < phases(); ++k) {
+            const auto ab = *phase_arguments(p_, seg, ax(), k);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
             if (r.hi - r.lo == 1) {
                 seg.phase[static_cast<std::size_t>(k)] = r.lo;
@@ -519,7 +525,7 @@ public:
         for (std::size_t k = 0; k < len; ++k) {
             const std::uint32_t e = hist_[from + k];
             hist_.push_back(e);
-            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], axes_)) last_seg = e;
+            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], ax())) last_seg = e;
         }
         if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
         prev_shape_ = kNone;
@@ -905,9 +911,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     return out;
 }
 
-Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
-                              BlockCounts& counts, const std::string& where, const WindowView* window,
-                              SegmentItems* items) {
+namespace {
+
+// The decoder's loop; kAxes: the axis count fixed at compile time (2), or
+// 0 for any count.
+template <int kAxes>
+Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool expand, Block& out, BlockCounts& counts,
+                        const std::string& where, const WindowView* window, SegmentItems* items) {
+    const int axes = kAxes ? kAxes : axes_in;
     Cursor cur(payload);
     auto error = [&](Errc code, std::size_t at, const std::string& what) {
         return make_error(code, where + " byte " + std::to_string(at) + ": " + what);
@@ -950,7 +961,7 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     const std::size_t rans_at = cur.pos() - rans_bytes.size();
     const std::size_t bits_at = cur.pos();
     DecSide io{&tables, RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
-    TableCoder<DecSide> coder(io, p, axes);
+    TableCoder<DecSide, kAxes> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
     start_output(out, expand, axes, std::move(*layout));
@@ -1057,7 +1068,9 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
                 if (chain.steps.size() < need)
                     chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
                 Step* o = chain.steps.data() + chain_steps;
-                if (!detail::expand_segment_into(p, seg, axes, o)) {
+                const bool fast = kAxes == 2 ? detail::expand_two_axis_into(p, seg, o)
+                                             : detail::expand_segment_into(p, seg, axes, o);
+                if (!fast) {
                     spill.clear();
                     expand_segment(p, seg, axes, spill);
                     if (spill.size() != n) return "segment expands to another step count";
@@ -1120,6 +1133,15 @@ Result<void> read_table_block(std::string_view payload, Profile p, int axes, boo
     counts.segments += h.nsegments;
     counts.steps += h.nsteps;
     return {};
+}
+
+}  // namespace
+
+Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
+                              BlockCounts& counts, const std::string& where, const WindowView* window,
+                              SegmentItems* items) {
+    if (axes == 2) return read_table<2>(payload, p, axes, expand, out, counts, where, window, items);
+    return read_table<0>(payload, p, axes, expand, out, counts, where, window, items);
 }
 
 }  // namespace stepzip::stz

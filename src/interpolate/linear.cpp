@@ -15,52 +15,10 @@ namespace stepzip {
 namespace {
 int sign(std::int64_t v) { return (v > 0) - (v < 0); }
 
-// o[0, n) = v, four steps a store.
-void fill_steps(Step* o, std::int64_t n, Step v) {
-    const std::uint64_t four = std::uint64_t{v} * 0x0001000100010001ull;
-    std::int64_t t = 0;
-    for (; t + 4 <= n; t += 4) std::memcpy(o + t, &four, sizeof four);
-    for (; t < n; ++t) o[t] = v;
-}
+using detail::emit_two_letter;
+using detail::fill_steps;
+using detail::other_ticks;
 
-// Fast path shared by the two-letter rules below (not normative: it emits
-// exactly what the per-step loops emit, tests/container_fast_paths_test.cpp
-// compares them over whole ranges). Rule: n ticks, f = f0; f >= 0: letter
-// `plain`, f -= s; else letter `other`, f += n - s. For f0 in [-s, n - s)
-// the invariant -s <= f < n - s holds, so after t ticks the count of
-// `other` letters is ceil((t·s - f0 - s) / n), and the j-th one (j >= 1)
-// falls on tick floor(((j - 1)·n + f0 + s) / s) + 1: one division per run,
-// the next tick by adding the quotient and remainder of n / s.
-// Calls at(t) for the 0-based tick t of each `other` letter, in order.
-template <class At>
-void other_ticks(std::int64_t n, std::int64_t s, std::int64_t f0, At at) {
-    const std::int64_t num = f0 + s;  // >= 0: f0 >= -s
-    std::int64_t t = num / s, rem = num % s;
-    const std::int64_t q = n / s, r = n % s;
-    for (std::int64_t j = 0; j < s; ++j) {
-        at(t);
-        t += q;
-        rem += r;
-        if (rem >= s) {
-            rem -= s;
-            ++t;
-        }
-    }
-}
-
-void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other, Step* o) {
-    if (n <= 16) {  // short runs: the rule a tick at a time costs less than the divisions
-        std::int64_t f = f0;
-        for (std::int64_t t = 0; t < n; ++t) {
-            const bool p = f >= 0;
-            o[t] = p ? plain : other;
-            f += p ? -s : n - s;
-        }
-        return;
-    }
-    fill_steps(o, n, plain);
-    other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
-}
 // More axes, each minor axis by the rule of emit_two_letter (letter "moves"
 // at the ticks found by division, else "rests"): the run of leading-axis
 // steps is written at once, then each minor axis's moves are or-ed into
@@ -92,21 +50,7 @@ bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* mi
 // false, and nothing written, where none applies (a run of more than 8
 // ticks with a phase outside its exact range).
 bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, Step* o) {
-    if (axes == 2) {
-        const std::int64_t ax = std::llabs(delta[0]), ay = std::llabs(delta[1]);
-        const bool x_leads = ax >= ay;  // the lowest index among the largest
-        const std::int64_t l = x_leads ? ax : ay, s = x_leads ? ay : ax;
-        const auto sx = static_cast<Step>(delta[0] > 0 ? 1u : delta[0] < 0 ? 3u : 0u);
-        const auto sy = static_cast<Step>(delta[1] > 0 ? 4u : delta[1] < 0 ? 12u : 0u);
-        const Step straight = x_leads ? sx : sy, diagonal = static_cast<Step>(sx | sy);
-        if (s == 0 || s == l) {
-            fill_steps(o, l, s == 0 ? straight : diagonal);
-            return true;
-        }
-        if (phases[0] < -s || phases[0] >= l - s) return false;
-        emit_two_letter(l, s, phases[0], straight, diagonal, o);
-        return true;
-    }
+    if (axes == 2) return detail::leading_two_axis_into(delta, phases[0], o);
     const int lead = leading_axis(delta, axes);
     const std::int64_t l = std::llabs(delta[lead]);
     int minor[kMaxAxes];
@@ -257,25 +201,15 @@ void patent_forward(std::int64_t dx, std::int64_t dy, std::int64_t f00, std::vec
 namespace detail {
 
 bool expand_segment_into(Profile p, const Segment& seg, int axes, Step* out) {
+    if (axes == 2) return expand_two_axis_into(p, seg, out);
     switch (p) {
-        case Profile::eval4: {
-            const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]), f0 = seg.phase[0];
-            if (a == 0 || b == 0) {  // one axis: every step on it (eval_linear forces them)
-                fill_steps(out, a + b, a == 0 ? make_step2(0, sign(seg.delta[1])) : make_step2(sign(seg.delta[0]), 0));
-                return true;
-            }
-            if (f0 < -b || f0 >= a) return false;
-            emit_two_letter(a + b, b, f0, make_step2(sign(seg.delta[0]), 0), make_step2(0, sign(seg.delta[1])), out);
-            return true;
-        }
         case Profile::eval8:
         case Profile::grbl:
         case Profile::marlin:
             return multiaxis_fast(seg.delta, axes, seg.phase.data(), out);
-        case Profile::patent:
+        default:
             return false;
     }
-    return false;
 }
 
 }  // namespace detail
