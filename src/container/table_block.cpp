@@ -209,6 +209,7 @@ public:
     Profile p_;
     const int axes_;
     int phases_;
+    const bool eight_ = profile_eight_connected(p_);
     // The axis count, a constant in the two-axis decoder.
     constexpr int ax() const { return kAxes ? kAxes : axes_; }
     // Phases a segment has: one on two axes under every profile.
@@ -408,7 +409,11 @@ public:
             seg.delta[i] = v;
         }
         for (int k = 0; k < phases(); ++k) {
-            const auto ab = *phase_arguments(p_, seg, ax(), k);
+            // Two axes: the arguments from the totals just decoded (the
+            // leading axis is `lead`), as phase_arguments gives them.
+            const auto ab = kAxes == 2 ? (eight_ ? std::pair<std::int64_t, std::int64_t>{l, std::llabs(seg.delta[1 - lead])}
+                                                 : std::pair<std::int64_t, std::int64_t>{std::llabs(seg.delta[0]), std::llabs(seg.delta[1])})
+                                       : *phase_arguments(p_, seg, ax(), k);
             const PhaseRange r = phase_range(p_, ab.first, ab.second);
             if (r.hi - r.lo == 1) {
                 seg.phase[static_cast<std::size_t>(k)] = r.lo;
@@ -1004,6 +1009,36 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     // far shorter is shrunk at its end).
     const std::size_t first_guess = static_cast<std::size_t>(
         std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16));
+    // Takes a line segment (not an arc) into the output.
+    auto take_line = [&](const Segment& seg) -> const char* {
+        if (!in_chain) return "segment outside a chain";
+        const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
+        if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
+        ++seen_segments;
+        seen_steps += n;
+        for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+        if (expand) {
+            // The chain's steps grow by doubling; chain_steps are written.
+            const std::size_t need = chain_steps + static_cast<std::size_t>(n);
+            if (chain.steps.size() < need)
+                chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
+            Step* o = chain.steps.data() + chain_steps;
+            const bool fast = kAxes == 2 ? detail::expand_two_axis_into(p, seg, o)
+                                         : detail::expand_segment_into(p, seg, axes, o);
+            if (!fast) {
+                spill.clear();
+                expand_segment(p, seg, axes, spill);
+                if (spill.size() != n) return "segment expands to another step count";
+                std::copy(spill.begin(), spill.end(), o);
+            }
+            chain_steps = need;
+        }
+        if (items) {
+            items->segments.push_back(seg);
+            ++items->counts.back();
+        }
+        return nullptr;
+    };
     // Takes history entry `e` (a decoded or copied item) into the output.
     auto take = [&](std::uint32_t e) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
@@ -1057,31 +1092,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 }
                 return nullptr;
             }
-            const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
-            if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
-            ++seen_segments;
-            seen_steps += n;
-            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
-            if (expand) {
-                // The chain's steps grow by doubling; chain_steps are written.
-                const std::size_t need = chain_steps + static_cast<std::size_t>(n);
-                if (chain.steps.size() < need)
-                    chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
-                Step* o = chain.steps.data() + chain_steps;
-                const bool fast = kAxes == 2 ? detail::expand_two_axis_into(p, seg, o)
-                                             : detail::expand_segment_into(p, seg, axes, o);
-                if (!fast) {
-                    spill.clear();
-                    expand_segment(p, seg, axes, spill);
-                    if (spill.size() != n) return "segment expands to another step count";
-                    std::copy(spill.begin(), spill.end(), o);
-                }
-                chain_steps = need;
-            }
-            if (items) {
-                items->segments.push_back(seg);
-                ++items->counts.back();
-            }
+            return take_line(seg);
         }
         return nullptr;
     };
@@ -1124,7 +1135,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         }
         if (io.failed || io.rans.failed || io.bits.failed) return fail("bad item");
         if (coder.hist_.size() > max_items) return fail("more items than declared");
-        if (const char* e = take(coder.hist_.back())) return fail(e);
+        // A shape's segment is a line; start, end and arc items go through take.
+        const char* e = op >= kOpSucc && op < kOpMatch ? take_line(*coder.segs_.back()) : take(coder.hist_.back());
+        if (e) return fail(e);
     }
     if (seen_segments != h.nsegments || seen_steps != h.nsteps) return fail("declared segment or step count does not match");
     if (!io.rans.finished()) return fail("rANS stream does not end at its size");

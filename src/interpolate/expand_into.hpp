@@ -18,9 +18,12 @@ namespace stepzip::detail {
 // o[0, n) = v, four steps a store.
 inline void fill_steps(Step* o, std::int64_t n, Step v) {
     const std::uint64_t four = std::uint64_t{v} * 0x0001000100010001ull;
-    std::int64_t t = 0;
-    for (; t + 4 <= n; t += 4) std::memcpy(o + t, &four, sizeof four);
-    for (; t < n; ++t) o[t] = v;
+    if (n < 4) {
+        for (std::int64_t t = 0; t < n; ++t) o[t] = v;
+        return;
+    }
+    for (std::int64_t t = 0; t + 4 <= n; t += 4) std::memcpy(o + t, &four, sizeof four);
+    std::memcpy(o + n - 4, &four, sizeof four);  // the last 1-3 steps (overlapping)
 }
 
 // Fast path shared by the two-letter rules below (not normative: it emits
