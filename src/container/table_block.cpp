@@ -242,9 +242,11 @@ public:
     // nothing else) so that matches may copy them. `canon`: the window's
     // segments in canonical form, in the same order (the encoder's cuts may
     // not be canonical); null: the window's segments as they are.
-    // `more_segs`, `more_items`: room for the block's own, reserved with the
-    // window's (the decoder's estimate; no copy of the primed history).
-    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0) {
+    // `more_segs`, `more_items`, `more_starts`: room for the block's own,
+    // reserved with the window's (the decoder's estimate; no copy of the
+    // primed history).
+    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0,
+               std::size_t more_starts = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
             n += b->items.segments.size();
@@ -252,18 +254,25 @@ public:
         }
         segs_.reserve(n + more_segs);
         hist_.reserve(n + 2 * c + more_items);
-        starts_.reserve(c);
+        starts_.reserve(c + more_starts);
+        // Written in place (the coder is new: every array empty).
+        segs_.resize(n);
+        hist_.resize(n + 2 * c);
+        starts_.resize(c);
+        const Segment** sp = segs_.data();
+        std::uint32_t* hp = hist_.data();
+        std::uint32_t si = 0, ci = 0;
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
-            std::size_t k = 0;
-            for (std::size_t c = 0; c < w.starts.size(); ++c) {
-                starts_.push_back(w.starts[c]);
-                hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
-                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    segs_.push_back(canon ? canon++ : &w.segments[k]);
-                    hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
+            const Segment* seg = w.segments.data();
+            for (std::size_t k = 0; k < w.starts.size(); ++k) {
+                starts_[ci] = w.starts[k];
+                *hp++ = kStartTag | ci++;
+                for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
+                    sp[si] = canon ? canon++ : seg;
+                    *hp++ = kSegTag | si++;
                 }
-                hist_.push_back(kEndTag);
+                *hp++ = kEndTag;
             }
         }
     }
@@ -976,8 +985,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         const std::size_t plausible = 64 * payload.size() + 1024;
         const auto segs = static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible));
         const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
+        const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
-            coder.prime(*window, nullptr, segs, hist);
+            coder.prime(*window, nullptr, segs, hist, starts);
         } else {
             coder.segs_.reserve(segs);
             coder.hist_.reserve(hist);
