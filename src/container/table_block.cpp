@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <numeric>
 
@@ -180,6 +181,30 @@ private:
     static constexpr std::size_t kMaxChunk = 4096;
     std::vector<std::unique_ptr<Segment[]>> chunks_;
     std::size_t used_ = 0, size_ = 0;
+};
+
+// The steps of the chain being decoded: one buffer for every chain of a
+// block, grown by doubling without initializing it; a chain's steps are
+// copied out once, at its end.
+class StepBuffer {
+public:
+    explicit StepBuffer(std::size_t first) : first_(first) {}
+    /// Room for `n` more steps after the first `used`, which are kept.
+    Step* room(std::size_t used, std::size_t n) {
+        if (used + n > cap_) {
+            const std::size_t cap = std::max({used + n, 2 * cap_, first_});
+            auto b = std::make_unique_for_overwrite<Step[]>(cap);
+            if (used > 0) std::memcpy(b.get(), buf_.get(), used * sizeof(Step));
+            buf_ = std::move(b);
+            cap_ = cap;
+        }
+        return buf_.get() + used;
+    }
+    const Step* data() const { return buf_.get(); }
+
+private:
+    std::unique_ptr<Step[]> buf_;
+    std::size_t cap_ = 0, first_;
 };
 
 // Canonical form of a segment: degenerate phases at their only value,
@@ -1014,11 +1039,10 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     Chain chain;
     Point ref{}, pos{};
     std::vector<Step> arc_scratch, spill;
-    std::size_t chain_steps = 0;  // steps written into chain.steps (its size runs ahead)
-    // A chain's first allocation: the block's mean chain length (a chain
-    // far shorter is shrunk at its end).
-    const std::size_t first_guess = static_cast<std::size_t>(
-        std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16));
+    std::size_t chain_steps = 0;  // steps of the chain written into `steps`
+    // The buffer's first size: the block's mean chain length.
+    StepBuffer steps(static_cast<std::size_t>(
+        std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16)));
     // Takes a line segment (not an arc) into the output.
     auto take_line = [&](const Segment& seg) -> const char* {
         if (!in_chain) return "segment outside a chain";
@@ -1028,11 +1052,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         seen_steps += n;
         for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
         if (expand) {
-            // The chain's steps grow by doubling; chain_steps are written.
             const std::size_t need = chain_steps + static_cast<std::size_t>(n);
-            if (chain.steps.size() < need)
-                chain.steps.resize(std::max<std::size_t>({need, 2 * chain.steps.size(), first_guess}));
-            Step* o = chain.steps.data() + chain_steps;
+            Step* o = steps.room(chain_steps, static_cast<std::size_t>(n));
             const bool fast = kAxes == 2 ? detail::expand_two_axis_into(p, seg, o)
                                          : detail::expand_segment_into(p, seg, axes, o);
             if (!fast) {
@@ -1071,8 +1092,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             in_chain = false;
             ref = pos;
             if (expand) {
-                chain.steps.resize(chain_steps);
-                if (chain.steps.capacity() > 2 * chain_steps + 64) chain.steps.shrink_to_fit();
+                chain.steps.assign(steps.data(), steps.data() + chain_steps);
                 out.chains.push_back(std::move(chain));
             }
         } else {
@@ -1083,14 +1103,14 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 // draws more than the block declares.
                 if (seen_segments == h.nsegments || arc_step_bound(seg.delta[2], seg.delta[3]) > h.nsteps)
                     return "arc may draw more steps than declared";
-                std::vector<Step>& to = expand ? chain.steps : arc_scratch;
-                if (expand) to.resize(chain_steps);
-                const std::size_t before = expand ? to.size() : 0;
-                if (!expand) to.clear();
-                if (!draw_arc_item(seg, to)) return "arc the interpolator refuses";
-                const auto n = static_cast<std::uint64_t>(to.size() - before);
-                if (expand) chain_steps = to.size();
+                arc_scratch.clear();
+                if (!draw_arc_item(seg, arc_scratch)) return "arc the interpolator refuses";
+                const auto n = static_cast<std::uint64_t>(arc_scratch.size());
                 if (seen_steps + n > h.nsteps) return "more segments or steps than declared";
+                if (expand) {
+                    std::copy(arc_scratch.begin(), arc_scratch.end(), steps.room(chain_steps, arc_scratch.size()));
+                    chain_steps += arc_scratch.size();
+                }
                 ++seen_segments;
                 seen_steps += n;
                 pos[0] += seg.delta[0];
