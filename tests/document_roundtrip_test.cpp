@@ -733,5 +733,31 @@ TEST(BlockWriter, RefusesLayoutsThatDoNotFit) {
     EXPECT_EQ(wp.write(p, out).error().code, Errc::corrupt);
 }
 
+TEST(BlockWriter, FreemanRefusesAStepWithoutACodeAnywhereInAChain) {
+    // The renderer writes four steps a round and checks the codes after the
+    // loop: a bad step at any place of a round or of the tail is refused.
+    std::mt19937 rng(17);
+    BlockWriter w(InputFormat::freeman);
+    for (std::size_t n = 1; n <= 13; ++n) {
+        std::string codes;
+        for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));
+        const std::string text = "4 -1 " + codes + "\n";
+        const auto blocks = read_blocks(InputFormat::freeman, text, 100, 100);
+        ASSERT_EQ(blocks.size(), 1u);
+        std::string out;
+        ASSERT_TRUE(w.write(blocks[0], out).ok());
+        EXPECT_EQ(out, text);
+        for (std::size_t k = 0; k < n; ++k)
+            for (const Step bad : {Step{0}, Step{0x02}, Step{0x08}, Step{0x10}, Step{0x11}, Step{0x8004}}) {
+                Block b = blocks[0];
+                b.chains[0].steps[k] = bad;
+                std::string o;
+                const auto r = w.write(b, o);
+                ASSERT_FALSE(r.ok()) << n << " " << k << " " << bad;
+                EXPECT_EQ(r.error().code, Errc::corrupt);
+            }
+    }
+}
+
 }  // namespace
 }  // namespace stepzip

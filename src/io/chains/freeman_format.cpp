@@ -439,17 +439,25 @@ bool append_codes(std::string& out, const Chain& c) {
     const Step* s = c.steps.data();
     std::size_t i = 0;
     if constexpr (std::endian::native == std::endian::little) {
-        // Four steps a round: one 64-bit load, two pair look-ups, one store.
+        // Four steps a round: one 64-bit load, one multiply that gathers the
+        // four low nibbles into the top 16 bits (nibble k of lane k lands on
+        // bit 48 + 4k; the product's other terms fall on distinct nibbles
+        // below bit 48 or past bit 63, so nothing carries into them), two
+        // pair look-ups, one store. A step above 15 or without a code is
+        // found once, after the loop: high bits or-ed, digit pairs and-ed
+        // (every digit has the bits 0x30, a pair without a code is 0).
+        std::uint64_t high = 0;
+        std::uint32_t digits = 0x30303030u;
         for (; i + 4 <= n; i += 4) {
             std::uint64_t v;
             std::memcpy(&v, s + i, 8);
-            if ((v & 0xFFF0FFF0FFF0FFF0ull) != 0) return false;
-            const std::uint32_t a = kPairCode[(v & 0xF) | ((v >> 12) & 0xF0)];
-            const std::uint32_t b = kPairCode[((v >> 32) & 0xF) | ((v >> 44) & 0xF0)];
-            if (a == 0 || b == 0) return false;
-            const std::uint32_t d = a | (b << 16);
+            high |= v;
+            const auto nib = static_cast<std::uint32_t>((v * 0x0001001001001000ull) >> 48);
+            const std::uint32_t d = kPairCode[nib & 0xFF] | (std::uint32_t{kPairCode[nib >> 8]} << 16);
+            digits &= d;
             std::memcpy(w + i, &d, 4);
         }
+        if ((high & 0xFFF0FFF0FFF0FFF0ull) != 0 || digits != 0x30303030u) return false;
     }
     for (; i < n; ++i) {
         const char d = s[i] < 16 ? kStepCode[s[i]] : 0;
