@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 #include "stepzip/profile.hpp"
 #include "stepzip/segment.hpp"
@@ -60,6 +61,14 @@ inline void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Ste
             f += p ? -s : n - s;
         }
         return;
+    }
+    if (2 * s > n) {
+        // Mostly `other`: the same rule with the letters' roles swapped
+        // (g = -f - 1 follows it with s' = n - s from g0 = -f0 - 1, in its
+        // exact range), so the loop runs over the fewer letters.
+        std::swap(plain, other);
+        s = n - s;
+        f0 = -f0 - 1;
     }
     fill_steps(o, n, plain);
     other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
