@@ -28,10 +28,10 @@ bool CutCache::find(std::uint64_t h, std::span<const Step> steps, BlockCut kind,
     if (e.key != key_of(kind, p, axes) || !std::equal(steps.begin(), steps.end(), e.steps.begin(), e.steps.end()))
         return false;
     const auto per = static_cast<std::size_t>(2 * axes - 1);
-    out.resize(e.cut.size() / per);
+    out.clear();
+    out.resize(e.cut.size() / per);  // zeros: the axes beyond `axes`
     const std::int64_t* v = e.cut.data();
     for (Segment& seg : out) {
-        seg = Segment{};
         for (int a = 0; a < axes; ++a) seg.delta[a] = *v++;
         for (int a = 0; a + 1 < axes; ++a) seg.phase[a] = *v++;
     }
