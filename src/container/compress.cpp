@@ -30,7 +30,7 @@ namespace {
 using namespace stz;
 
 // The chain cuts a frame keeps for chains that repeat (cut_cache.hpp).
-constexpr std::size_t kCutCacheBytes = std::size_t{32} << 20;
+constexpr std::size_t kCutCacheBytes = std::size_t{8} << 20;
 
 SegmenterKind implied_segmenter(int level) {
     return level >= kOptimalLevel ? SegmenterKind::optimal : SegmenterKind::greedy;
