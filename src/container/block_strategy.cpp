@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "arc_items.hpp"
+#include "cut_cache.hpp"
 #include "encoder.hpp"
 #include "modeled_block.hpp"
 #include "stepzip/segment/block_cut.hpp"
@@ -183,10 +184,10 @@ bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const 
 constexpr std::uint64_t kOptimalMeanSteps = 64;
 
 Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cut& segs, SegmentStats& stats,
-                           std::uint64_t first_chain, const std::string& source) {
+                           std::uint64_t first_chain, const std::string& source, CutCache* cache) {
     const bool optimal = kind == SegmenterKind::optimal;
-    auto r = cut_block(block.chains, block.axes, p, optimal ? BlockCut::greedy : block_cut_of(kind), segs, &stats,
-                       first_chain);
+    auto r = cut_block_cached(block.chains, block.axes, p, optimal ? BlockCut::greedy : block_cut_of(kind), segs,
+                              cache, &stats, first_chain);
     if (!r) return make_error(r.error().code, source + ": " + r.error().message);
     if (!optimal) return {};
     // A two-axis block too dense for the segment model is left to the step model.
@@ -208,8 +209,8 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cu
 }
 
 // The default-phase cut of every chain; false when a chain has none.
-bool aligned_block_cut(const Block& block, Profile p, Cut& out) {
-    return cut_block(block.chains, block.axes, p, BlockCut::default_phase, out).ok();
+bool aligned_block_cut(const Block& block, Profile p, Cut& out, CutCache* cache) {
+    return cut_block_cached(block.chains, block.axes, p, BlockCut::default_phase, out, cache).ok();
 }
 
 bool representable(const Block& block, Profile p, int axes) {
@@ -234,7 +235,7 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
     std::vector<Cut> cuts;
     if (!s.thorough) {
         Cut aligned;
-        if (s.aligned_cut && !segs_aligned && aligned_block_cut(block, s.profile, aligned))
+        if (s.aligned_cut && !segs_aligned && aligned_block_cut(block, s.profile, aligned, s.cut_cache))
             cuts.push_back(std::move(aligned));
         else
             cuts.push_back(std::move(segs));
@@ -244,13 +245,13 @@ std::vector<Cut> model_cuts(const Block& block, const EncoderSettings& s, Cut se
         Cut greedy;
         SegmentStats unused;
         // (the optimal cut keeps the greedy one where it is not better)
-        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source) && greedy != segs) {
+        if (segment_block(block, s.profile, SegmenterKind::greedy, greedy, unused, 0, s.source, s.cut_cache) && greedy != segs) {
             cuts.push_back(std::move(greedy));
             if (greedy_differs) *greedy_differs = true;
         }
     }
     Cut aligned;
-    const bool have_aligned = aligned_block_cut(block, s.profile, aligned) && aligned != segs;
+    const bool have_aligned = aligned_block_cut(block, s.profile, aligned, s.cut_cache) && aligned != segs;
     cuts.insert(cuts.begin(), std::move(segs));
     if (have_aligned) cuts.push_back(std::move(aligned));
     return cuts;
@@ -331,7 +332,7 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     // level costs seconds per MB and changed the ranking on no corpus file.
     // (The greedy cut in place of the optimal one did: the 3.7 MB glyph
     // file of docs/benchmarks.md took eval8 instead of marlin, 2.6 % larger.)
-    if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source)) return SIZE_MAX;
+    if (!segment_block(block, p, s.segmenter, segs, stats, 0, s.source, s.cut_cache)) return SIZE_MAX;
     if (trial) {
         *trial = FirstBlockTrial{};
         trial->profile = p;
@@ -383,10 +384,10 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
     if (!representable(sample, p, sample.axes)) return SIZE_MAX;
     Cut segs;
     SegmentStats stats;
-    if (!segment_block(sample, p, base.segmenter, segs, stats, 0, base.source)) return SIZE_MAX;
+    if (!segment_block(sample, p, base.segmenter, segs, stats, 0, base.source, base.cut_cache)) return SIZE_MAX;
     std::size_t best = write_segment_model(sample, p, segs).size();
     Cut cut;
-    if (p != Profile::patent && aligned_block_cut(sample, p, cut)) {
+    if (p != Profile::patent && aligned_block_cut(sample, p, cut, base.cut_cache)) {
         const std::size_t alt = write_segment_model(sample, p, cut).size();
         if (alt < best) {
             best = alt;
@@ -513,7 +514,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // Below the thorough levels, when the sample chose the default-phase
         // cut, it is the only cut made (the chains were checked by representable()).
         bool aligned = !s.thorough && s.aligned_cut && s.segmenter != SegmenterKind::patent &&
-                       aligned_block_cut(block, s.profile, segs);
+                       aligned_block_cut(block, s.profile, segs, s.cut_cache);
         const FirstBlockTrial* trial = s.thorough ? trial_of(job, s) : nullptr;
         if (trial) {
             segs = trial->segs;
@@ -521,7 +522,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         } else if (!aligned) {
             const SegmenterKind kind =
                 s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
-            if (auto r = segment_block(block, s.profile, kind, segs, job.stats, job.first_chain, s.source); !r) {
+            if (auto r = segment_block(block, s.profile, kind, segs, job.stats, job.first_chain, s.source, s.cut_cache); !r) {
                 job.error = std::move(r).error();
                 return;
             }

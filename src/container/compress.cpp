@@ -6,7 +6,8 @@
 // whose rendering was compared with the input bytes when it was parsed);
 // the write follows in block order.
 // Memory: about (threads + 1) blocks plus the window's content (a window
-// block's chains until its step-model symbols are made, then the symbols). What a job
+// block's chains until its step-model symbols are made, then the symbols),
+// plus up to kCutCacheBytes of chain cuts (cut_cache.hpp). What a job
 // sees depends only on the blocks before it, so -T N output equals -T 1
 // output byte for byte.
 #include <xxhash.h>
@@ -16,6 +17,7 @@
 #include <thread>
 
 #include "block_codec.hpp"
+#include "cut_cache.hpp"
 #include "../common/bytes.hpp"
 #include "encoder.hpp"
 #include "memory_io.hpp"
@@ -26,6 +28,9 @@ namespace stepzip {
 namespace {
 
 using namespace stz;
+
+// The chain cuts a frame keeps for chains that repeat (cut_cache.hpp).
+constexpr std::size_t kCutCacheBytes = std::size_t{8} << 20;
 
 SegmenterKind implied_segmenter(int level) {
     return level >= kOptimalLevel ? SegmenterKind::optimal : SegmenterKind::greedy;
@@ -96,6 +101,8 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     s.thorough = opt.level >= kThoroughLevel;
     s.window_log = opt.window_log.value_or(window_log_for_level(opt.level));
     s.arc_method = opt.arc_method;
+    CutCache cut_cache(kCutCacheBytes);
+    s.cut_cache = &cut_cache;
 
     FrameInfo info;
     info.segmenter = s.segmenter;

@@ -39,6 +39,8 @@ bool mixed_step_model_pays(const Block& block);
 /// block's own choice takes instead of making them again.
 struct FirstBlockTrial;
 
+class CutCache;
+
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {
     Profile profile = Profile::eval8;
@@ -58,6 +60,8 @@ struct EncoderSettings {
     /// no smaller segment model than the greedy cut on the first block's
     /// trial; the blocks are then cut greedily (set by choose_frame_settings()).
     bool optimal_recut = true;
+    /// The frame's chain cuts, shared by its jobs (null: every chain is cut).
+    CutCache* cut_cache = nullptr;
 };
 
 /// One block in flight, from the reader to the ordered write.

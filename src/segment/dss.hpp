@@ -207,7 +207,7 @@ struct RunState {
     /// vertices and never give an extreme tangent (every 1-position left of
     /// the run sees its last zero at a smaller slope); its first zero is kept
     /// on the hull as the letter-by-letter hull keeps it.
-    void commit_zeros(std::int64_t k) {
+    STEPZIP_DSS_INLINE void commit_zeros(std::int64_t k) {
         if (k >= 2) push_lower<wide>(zeros_hull, {p, q});
         const Pt c{p + k - 1, q};
         std::int64_t n, d;
@@ -218,7 +218,7 @@ struct RunState {
     }
 
     /// Appends a run of k >= 1 ones (only its top point joins the hull).
-    void commit_ones(std::int64_t k) {
+    STEPZIP_DSS_INLINE void commit_ones(std::int64_t k) {
         const Pt c{p, q + k - 1};
         std::int64_t n, d;
         if (max_slope_to<wide>(zeros_hull, c, n, d) && wide(lo.n) * d < wide(n) * lo.d) lo = {n, d};
