@@ -320,18 +320,18 @@ def gamma(v):
 
 
 def cost(segs, conc, moves):
-    """Estimated bits: segments (step count, period), moves (step counts)."""
-    seg_bits = 0; hist = []; misses = []
+    """Estimated bits: segments (step count, period) by their place in the
+    move (first, second, later), moves (step counts)."""
+    seg_bits = [0, 0, 0]; hist = []; misses = []
     for (L, N, b, p), (c, P) in zip(segs, conc):
-        seg_bits += 1
-        same = [r for bb, r in hist[-2:] if bb == b]
-        if not same or (hist and hist[-1][0] != b):
-            seg_bits += 18
+        same = [r for bb, r in hist[-2:] if bb == b] if hist and hist[-1][0] == b else []
+        if not same:
+            seg_bits[0] += 19
         else:
             rate = 2 * same[-1] - same[0] if len(same) == 2 else same[-1]
             q = (round(1 / rate) >> L) if rate > 0 else P
             r = 0 if p.plo <= q <= p.phi else (q - p.phi if q > p.phi else q - p.plo)
-            seg_bits += gamma(r); misses.append(abs(r))
+            seg_bits[min(len(same), 2)] += 1 + gamma(r); misses.append(abs(r))
         hist.append((b, 1.0 / (P << L)))
     move_bits = sum(gamma(v) for m in moves for v in m)
     misses.sort()
@@ -361,9 +361,11 @@ def main():
     bad = [t for t in range(len(d)) if d[t] != out[t]]
     print('integer periods chosen; chain restarts', breaks)
     print('ticks regenerated differently', len(bad), 'of', len(d))
-    sb, mb, misses = cost(segs, conc, moves)
-    print('estimated bits: segments', sb, '(%.2f a segment), moves' % (sb / len(segs)), mb,
-          'total bytes', (sb + mb + 7) // 8)
+    parts, mb, misses = cost(segs, conc, moves)
+    sb = sum(parts)
+    print('estimated bits: segments', sb, '(%.2f a segment; first, second, later segments of a move:' % (sb / len(segs)),
+          *parts, end='); ')
+    print('moves', mb, 'total bytes', (sb + mb + 7) // 8)
     if misses:
         print('period residuals (timer cycles): median', misses[len(misses) // 2],
               'p90', misses[len(misses) * 9 // 10], 'zero', sum(1 for m in misses if m == 0))
