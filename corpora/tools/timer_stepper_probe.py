@@ -1,35 +1,58 @@
 #!/usr/bin/env python3
-"""Probe: how much of a timed STEP/DIR log a timer-interrupt stepper model
-reproduces exactly (a measurement prototype, not the codec).
+"""Probe: how much of a timed STEP/DIR log a model of Grbl's stepper interrupt
+reproduces tick for tick (a measurement prototype, not the codec).
 
-Model: the stepper interrupt fires every P CPU cycles, P constant within a
-stepper segment of N interrupts (N a multiple of 2^L); with step-smoothing
-level L (0..LMAX) the Bresenham increments are steps << (LMAX - L) against
-a threshold of event_count << LMAX, counters starting at half of it and
-carried across the segments of a planner block; the step computed in
-interrupt i (1..N) leaves in tick floor((c + (i - 1 + DELTA)·P) / C_TICK),
-c the cycle of the interrupt that loaded the segment, and the next segment
-is loaded at c + N·P. The planner blocks' step counts are taken from the
-g-code job (targets read and rounded to steps in single precision),
-so only the timing is fitted: per segment L, P and N are searched so that
-the regenerated steps match the log tick for tick, keeping the cycle c as
-an interval of the values every match so far allows.
+Model (Grbl 1.1's segment generator and Timer1 interrupt with AMASS):
+- a stepper segment has a step rate in CPU cycles per step, cps; its
+  smoothing level L is decided by thresholds (--thresholds, cycles per step
+  at which levels 1, 2, 3 begin: L = number of thresholds <= cps); the
+  timer's compare value is cps >> L, the interrupt period P one cycle more
+  (the timer counts 0..compare), at most 65536;
+- a segment runs N = n << L interrupts for n steps of the move's leading
+  axis; the Bresenham increments are a move's step counts << (3 - L)
+  against its leading count << 3, counters starting at half of that at the
+  move's first segment and carried across its segments;
+- the interrupt that loads a segment (at cycle c) computes its first step
+  event; every step leaves one interrupt later: the step of interrupt i
+  (1..N) at cycle c + i*P; the next segment is loaded at c + N*P; a move's
+  DIR levels leave with its second interrupt, c + P;
+- segments last one --segment-cycles period (10 ms), the dt remainder of
+  the partial step carried to the next one (so n*cps lies within one cps
+  of it), several periods while under 1.25 steps in one, and the move's
+  last segment ends with the move.
 
-Per segment the candidates are ranked by how many steps they and the next
-segment (of the same or the next block) match; when no candidate goes on,
-the search backs up to earlier segments' other candidates. With THRESHOLDS
-(cycles per step at which levels 1, 2, ... begin, e.g. 2000,4000,8000) a
-segment's L must be the one its cycles per step select.
+The moves' step counts come from the job (G-code read in single
+precision with --steps-mm, or the --report JSON of timed_stream.py); the
+timing is fitted: per segment L, n and P such that every step tick and DIR
+change matches, each segment's feasible (c, P) a polygon whose end c + N*P
+is passed on as an interval, with depth-first backtracking. Then integer
+(c, P) are chosen per segment (a backward pass of the starts from which the
+rest fits, a forward choice), the whole stream is regenerated from them and
+compared tick for tick, and the cost of coding the segments is estimated:
+per segment the step count n as one bit among the 10 ms rule's candidates,
+the period as a signed Elias-gamma residual against a prediction carrying
+the move's rate change from its previous two segments (0 when the predicted
+period is one of the periods that fit), a move's first segment 18 bits; per
+move the step counts as signed Elias-gamma codes.
 
-JOB is the g-code of a 2-axis job or the --report JSON of timed_stream.py
-(its moves' steps, any axis count).
-
-Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [DELTA [C_TICK [LMAX [STEPS_MM [THRESHOLDS]]]]]
-Prints the segments fitted (block, L, P, N, steps matched, width of the
-cycle interval), then how far the fit reached.
+Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [--steps-mm 100]
+         [--cycles-per-tick 640] [--thresholds 2000,4000,8000]
+         [--segment-cycles 160000] [--segments OUT.json]
 """
-import sys, math, struct
-f32=lambda x: struct.unpack('f',struct.pack('f',x))[0]
+import argparse
+import json
+import math
+import struct
+import sys
+
+LMAX = 3
+PMAX = 65536  # the 16-bit compare value + 1
+
+
+def f32(x):
+    return struct.unpack('f', struct.pack('f', x))[0]
+
+
 def read_float(text):
     """A decimal as a single-precision g-code reader makes it: the digits as
     an integer, then scaled by 0.01 and 0.1 (double constants, the result
@@ -41,185 +64,315 @@ def read_float(text):
         while e <= -2: v = f32(v * 0.01); e += 2
         if e < 0: v = f32(v * 0.1)
     return -v if neg else v
-def lround(x): return int(math.floor(x+0.5)) if x>=0 else -int(math.floor(-x+0.5))
-d = open(sys.argv[1], 'rb').read(); nc = open(sys.argv[2]).read().split('\n')
-arg = lambda i, v: int(sys.argv[i]) if len(sys.argv) > i else v
-DELTA = arg(3, 1); CT = arg(4, 640); LMAX = arg(5, 3); SPM = arg(6, 100)
-pos = [0, 0]; blocks = []
-if sys.argv[2].endswith('.json'):  # a timed_stream.py --report: the moves' steps
-    import json
-    blocks = [b['steps'] for b in json.loads('\n'.join(nc))]
-    nc = []
-for line in nc:
-    if not line.startswith(('G0 ', 'G1 ')): continue
-    tgt = list(pos)
-    for w in line.split()[1:]:
-        tgt['XY'.index(w[0])] = lround(f32(read_float(w[1:]) * f32(float(SPM))))
-    dd = [tgt[0]-pos[0], tgt[1]-pos[1]]
-    if any(dd): blocks.append(dd)
-    pos = tgt
-evt=[]; evm=[]
-for t, b in enumerate(d):
-    m = (b & 1) | ((b >> 1) & 2) | ((b >> 2) & 4)  # the STEP bits 0, 2, 4 of axes 0, 1, 2
-    if m: evt.append(t); evm.append(m)
-NA = len(blocks[0])
-def gen(cnt, S, E, L, u_left, limit):
-    """interrupt indices with masks: list of (i, mask, cnt_after, u_after)"""
-    inc=[s<<(LMAX-L) for s in S]; thr=E<<LMAX; cnt=list(cnt); du=1<<(LMAX-L); i=0; out=[]
-    while u_left >= du and len(out) < limit:
-        i+=1; u_left-=du; mask=0
-        for a in range(NA):
-            cnt[a]+=inc[a]
-            if cnt[a]>thr: cnt[a]-=thr; mask|=1<<a
-        if mask: out.append((i, mask, tuple(cnt), u_left))
-    return out, i, tuple(cnt), u_left
-def boxwalk(clo, chi, plo, phi, evs, k):
-    m=0
-    for (i, mask, _, _) in evs:
-        if k+m >= len(evt) or evm[k+m] != mask: break
-        t=evt[k+m]; j=i-1+DELTA
-        if j == 0:
-            lo_c, hi_c = max(clo, CT*t), min(chi, CT*t+CT-1)
-            if lo_c > hi_c: break
-            clo, chi = lo_c, hi_c
-        else:
-            lo = -((chi - CT*t)//j); hi = (CT*t+CT-1-clo)//j
-            if max(plo, lo) > min(phi, hi): break
-            plo, phi = max(plo, lo), min(phi, hi)
-        m+=1
-    return m, plo, phi
-def cwalk(clo, chi, P, evs, k):
-    res=[]; m=0
-    for (i, mask, cnt, ul) in evs:
-        if k+m >= len(evt) or evm[k+m] != mask: break
-        t=evt[k+m]; j=i-1+DELTA
-        lo, hi = CT*t - j*P, CT*t+CT-1 - j*P
-        clo, chi = max(clo, lo), min(chi, hi)
-        if clo > chi: break
-        m+=1; res.append((m, clo, chi, i, cnt, ul))
-    return res
-LIM = 300
-def quick(clo, chi, cnt, S, E, k, u_left):
-    best=0
-    for L in range(LMAX+1):
-        evs = gen(cnt, S, E, L, u_left, 80)[0]
-        best=max(best, boxwalk(clo, chi, 1, 1<<22, evs, k)[0])
+
+
+def lround(x):
+    return int(math.floor(x + 0.5)) if x >= 0 else -int(math.floor(-x + 0.5))
+
+
+def read_moves(path, steps_mm):
+    """The moves' signed step counts: from a timed_stream.py report or a
+    2-axis G-code job (G0/G1 X.. Y.., absolute mm)."""
+    text = open(path).read()
+    if path.endswith('.json'):
+        return [tuple(b['steps']) for b in json.loads(text)]
+    pos = [0, 0]; moves = []
+    for line in text.split('\n'):
+        if not line.startswith(('G0 ', 'G1 ')): continue
+        tgt = list(pos)
+        for w in line.split()[1:]:
+            tgt['XY'.index(w[0])] = lround(f32(read_float(w[1:]) * f32(float(steps_mm))))
+        dd = (tgt[0] - pos[0], tgt[1] - pos[1])
+        if any(dd): moves.append(dd)
+        pos = tgt
+    return moves
+
+
+def read_log(path, axes):
+    """Step ticks with their axis masks, and the DIR changes (tick, bits)."""
+    d = open(path, 'rb').read()
+    evt, evm, dirch = [], [], []
+    prev = 0
+    for t, b in enumerate(d):
+        m = sum(((b >> (2 * a)) & 1) << a for a in range(axes))
+        if m: evt.append(t); evm.append(m)
+        db = sum(((b >> (2 * a + 1)) & 1) << a for a in range(axes))
+        if db != prev: dirch.append((t, db)); prev = db
+    return d, evt, evm, dirch
+
+
+class Poly:
+    """Feasible (c, P): c in [clo, chi], P in [plo, phi], lo_j <= c + i_j P <= hi_j."""
+    def __init__(s, clo, chi, plo, phi):
+        s.clo, s.chi, s.plo, s.phi = clo, chi, plo, phi
+        s.cons = []
+
+    def cmin(s, P):
+        return max([s.clo] + [lo - i * P for i, lo, _ in s.cons])
+
+    def cmax(s, P):
+        return min([s.chi] + [hi - i * P for i, _, hi in s.cons])
+
+    def add(s, i, lo, hi):
+        """Adds a constraint and narrows [plo, phi]; False if nothing fits."""
+        s.cons.append((i, lo, hi))
+        g = lambda P: s.cmax(P) - s.cmin(P)  # concave in P
+        a, b = s.plo, s.phi
+        while b - a > 2:
+            m1 = a + (b - a) // 3; m2 = b - (b - a) // 3
+            if g(m1) < g(m2): a = m1
+            else: b = m2
+        best = max(range(a, b + 1), key=g)
+        if g(best) < 0: return False
+        lo, hi = s.plo, best
+        while lo < hi:
+            m = (lo + hi) // 2
+            if g(m) >= 0: hi = m
+            else: lo = m + 1
+        s.plo = lo
+        lo, hi = best, s.phi
+        while lo < hi:
+            m = (lo + hi + 1) // 2
+            if g(m) >= 0: lo = m
+            else: hi = m - 1
+        s.phi = lo
+        return True
+
+    def end_range(s, N):
+        """[min, max] of c + N P over the feasible set."""
+        def least(f, a, b):  # f convex on the integers a..b
+            while b - a > 2:
+                m1 = a + (b - a) // 3; m2 = b - (b - a) // 3
+                if f(m1) <= f(m2): b = m2
+                else: a = m1
+            return min(f(P) for P in range(a, b + 1))
+        return (least(lambda P: s.cmin(P) + N * P, s.plo, s.phi),
+                -least(lambda P: -(s.cmax(P) + N * P), s.plo, s.phi))
+
+    def copy(s):
+        p = Poly(s.clo, s.chi, s.plo, s.phi); p.cons = list(s.cons); return p
+
+
+class Model:
+    def __init__(s, ct, thresholds, seg):
+        s.ct, s.thr, s.seg = ct, thresholds, seg
+
+    def p_range(s, L):
+        """Periods (compare value + 1) the threshold rule allows at level L."""
+        lo = 1 if L == 0 else (s.thr[L - 1] >> L) + 1
+        hi = s.thr[0] if L == 0 else (PMAX if L == LMAX else s.thr[L] >> L)
+        return lo, hi
+
+    def walk(s, S, E, cnt, L, poly, evt, evm, k, R):
+        """Interrupts at level L from counters cnt against the observed step
+        ticks from index k: the candidate ends (n, polygon, counters, k) for
+        n = 1.. leading steps while everything matches."""
+        inc = [v << (LMAX - L) for v in S]; thr = E << LMAX
+        cnt = list(cnt); i = 0; n = 0; out = []
+        while n < R:
+            for _ in range(1 << L):
+                i += 1; mask = 0
+                for a in range(len(S)):
+                    cnt[a] += inc[a]
+                    if cnt[a] > thr: cnt[a] -= thr; mask |= 1 << a
+                if mask:
+                    if k >= len(evt) or evm[k] != mask: return out
+                    t = evt[k]
+                    if not poly.add(i, s.ct * t, s.ct * t + s.ct - 1): return out
+                    k += 1
+            n += 1
+            out.append((n, poly.copy(), tuple(cnt), k))
+            lo = ((poly.plo - 1) << L) - 1; hi = poly.phi << L
+            kmax = 1 if hi < s.seg * 5 // 8 else 40  # stretched only below 1.25 steps a period
+            if n * lo > s.seg * kmax + 2 * hi: break
+        return out
+
+    def rule(s, n, L, poly, R, first, cps_prev):
+        """Whether n steps at this rate fill whole segment periods (the dt
+        remainder carried: within one step's time), or end the move."""
+        if n == R: return True
+        lo = ((poly.plo - 1) << L) - 1; hi = poly.phi << L
+        up = 0 if first else cps_prev
+        for kk in range(1, 40):
+            if n * hi >= s.seg * kk - hi and n * lo <= s.seg * kk + up: return True
+            if s.seg * kk - hi > n * hi: break
+        return False
+
+
+def fit(model, moves, evt, evm, dirch, limit=3000):
+    NA = len(moves[0])
+    dirbits = [sum(1 << a for a in range(NA) if m[a] < 0) for m in moves]
+
+    def start(b):
+        E = max(abs(v) for v in moves[b])
+        return tuple([(E << LMAX) >> 1] * NA), E
+
+    def cands(st):
+        b, cnt, R, k, clo, chi, cps_prev, first, dptr, dcur = st
+        S = [abs(v) for v in moves[b]]; E = max(S)
+        out = []; dcon = None; nd = dptr; ndcur = dcur
+        if first and dirbits[b] != dcur:
+            if dptr >= len(dirch) or dirch[dptr][1] != dirbits[b]: return []
+            dcon = dirch[dptr][0]; nd = dptr + 1; ndcur = dirbits[b]
+        for L in range(LMAX + 1):
+            poly = Poly(clo, chi, *model.p_range(L))
+            if dcon is not None and not poly.add(1, model.ct * dcon, model.ct * dcon + model.ct - 1):
+                continue
+            for n, p, cnt2, k2 in model.walk(S, E, cnt, L, poly, evt, evm, k, R):
+                if not model.rule(n, L, p, R, first, cps_prev): continue
+                e = p.end_range(n << L); cps = p.phi << L
+                if n == R:
+                    c2, E2 = start(b + 1) if b + 1 < len(moves) else ((), 0)
+                    nst = (b + 1, c2, E2, k2, e[0], e[1], cps, True, nd, ndcur)
+                else:
+                    nst = (b, cnt2, R - n, k2, e[0], e[1], cps, False, nd, ndcur)
+                mid = ((p.plo + p.phi) // 2) << L
+                score = 0 if n == R and n * mid <= model.seg + cps_prev else \
+                    min(abs(n * mid - model.seg * kk) for kk in range(1, 40))
+                out.append((score, (L, n << L, b, p), nst))
+        out.sort(key=lambda x: x[0])
+        return [x[1:] for x in out]
+
+    c0, E0 = start(0)
+    stack = [[(0, c0, E0, 0, -(1 << 40), 1 << 40, 0, True, 0, 0), None, None, 0]]
+    best = (0, []); bt = 0
+    while stack:
+        fr = stack[-1]; st = fr[0]
+        if st[0] >= len(moves):
+            best = (st[3], [f[1] for f in stack[1:]]); break
+        if fr[2] is None: fr[2] = cands(st)
+        if fr[3] >= len(fr[2]):
+            stack.pop(); bt += 1
+            if bt > limit: break
+            continue
+        seg, nst = fr[2][fr[3]]; fr[3] += 1
+        stack.append([nst, seg, None, 0])
+        if nst[3] > best[0]:
+            best = (nst[3], [f[1] for f in stack[1:]]); bt = 0
     return best
 
-THR = [int(v) for v in sys.argv[7].split(',')] if len(sys.argv) > 7 else None
-def rule_ok(L, P):
-    if THR is None: return True
-    lo, hi = P << L, (P << L) + (1 << L) - 1  # the cycles per step P was shifted from
-    tl = THR[L - 1] if L > 0 else 0
-    th = THR[L] if L < len(THR) else 1 << 62
-    return lo < th and hi >= tl
-AMASS = {}  # level -> [min, max] cycles per step seen where the level was the only fit
-def seg_step(S, E, k, cint, cnt, u_left, nxt=None):
-    cand=[]
-    for L in range(LMAX+1):
-        evs, _, _, _ = gen(cnt, S, E, L, u_left, LIM)
-        if not evs: continue
-        m0, plo, phi = boxwalk(cint[0], cint[1], 1, 1<<22, evs, k)
-        if m0 == 0: continue
-        if phi - plo > 64:
-            mid=(plo+phi)//2; Ps=range(mid-32, mid+33)
-        else: Ps=range(plo, phi+1)
-        du=1<<(LMAX-L)
-        for P in Ps:
-            res = cwalk(cint[0], cint[1], P, evs, k)
-            if not res: continue
-            mmax=res[-1][0]
-            inext = evs[mmax][0] if mmax < len(evs) else (evs[-1][0] + 1 if len(evs) == LIM else res[-1][3] + res[-1][5]//du + 1)
-            top = min(inext-1, res[-1][3] + res[-1][5]//du)
-            Ns=[n for n in range(top - top % (1<<L), 0, -(1<<L))][:4]
-            for N in Ns:
-                pre=[r for r in res if r[3] <= N]
-                if not pre: continue
-                m, clo, chi = pre[-1][0], pre[-1][1], pre[-1][2]
-                ul = u_left - N*du
-                if ul < 0: continue
-                cn = pre[-1][4]; extra = N - pre[-1][3]
-                inc=[s<<(LMAX-L) for s in S]; cn=list(cn)
-                for _ in range(extra):
-                    for a in range(NA): cn[a]+=inc[a]
-                cn=tuple(cn)
-                nc_ = (clo+N*P, chi+N*P)
-                if k+m >= len(evt): sc = m
-                elif ul == 0:
-                    if nxt is None: sc = m
-                    else:
-                        S2=[abs(v) for v in nxt]; E2=max(S2)
-                        sc = m + quick(nc_[0], nc_[1], tuple([(E2<<LMAX)>>1]*NA), S2, E2, k+m, E2<<LMAX)
-                else: sc = m + quick(nc_[0], nc_[1], cn, S, E, k+m, ul)
-                cand.append((sc, L, P, N, m, nc_, cn, ul))
-    if not cand: return None
-    top = max(x[0] for x in cand)
-    best_only = [x for x in cand if x[0] == top]
-    levels = sorted(set(x[1] for x in best_only))
-    if len(levels) == 1:
-        for x in best_only:
-            r = AMASS.setdefault(x[1], [x[2] << x[1], x[2] << x[1]])
-            r[0] = min(r[0], x[2] << x[1]); r[1] = max(r[1], x[2] << x[1])
-    def off(x):  # distance of the cycles per step from the range seen at that level
-        r = AMASS.get(x[1])
-        if r is None: return 1 << 40
-        cps = x[2] << x[1]
-        return max(0, r[0] - cps, cps - r[1])
-    groups = {}
-    for x in cand:
-        key = (x[1], x[3], x[4], x[6], x[7])
-        if key in groups:
-            g = groups[key]; g[5] = (min(g[5][0], x[5][0]), max(g[5][1], x[5][1]))
-        else: groups[key] = list(x)
-    vals = [x for x in groups.values() if rule_ok(x[1], x[2])]
-    return sorted(vals, key=lambda x: (-x[0], off(x)))[:6]
-def start_interval(S, E, k, cnt, u_left):
-    cands=[]
-    for L in range(LMAX+1):
-        evs = gen(cnt, S, E, L, u_left, 400)[0]
-        if len(evs) < 2 or evs[0][1] != evm[k] or evs[1][1] != evm[k+1]: continue
-        di = evs[1][0]-evs[0][0]; dt = evt[k+1]-evt[k]
-        for P in range(max(1,(dt-1)*CT//di), (dt+1)*CT//di+2):
-            res = cwalk(-(1<<50), 1<<50, P, evs, k)
-            if res: cands.append((res[-1][0], L, P, res[-1][1], res[-1][2]))
-    mb = max(x[0] for x in cands)
-    top=[x for x in cands if x[0] == mb]
-    return (min(x[3] for x in top), max(x[4] for x in top))
-def fresh(bi):
-    S=[abs(v) for v in blocks[bi]]; E=max(S)
-    return tuple([(E<<LMAX)>>1]*NA), E<<LMAX
-cnt0, ul0 = fresh(0)
-S0=[abs(v) for v in blocks[0]]
-stack=[dict(bi=0, k=0, cint=start_interval(S0, max(S0), 0, cnt0, ul0), cnt=cnt0, ul=ul0, cands=None, idx=0, seg=None)]
-best_k=0; best_stack=None; since=0; backtracks=0; shown=0
-while stack:
-    f=stack[-1]
-    if f['k'] >= len(evt) or f['bi'] >= len(blocks): best_stack=list(stack); best_k=f['k']; break
-    if f['cands'] is None:
-        S=[abs(v) for v in blocks[f['bi']]]; E=max(S)
-        nxt = blocks[f['bi']+1] if f['bi']+1 < len(blocks) else None
-        f['cands'] = seg_step(S, E, f['k'], f['cint'], f['cnt'], f['ul'], nxt) or []
-    if f['idx'] >= len(f['cands']) or since > 400:
-        stack.pop(); backtracks += 1; since += 1
-        if since > 400: break
-        continue
-    sc, L, P, N, m, nc_, cn, ul = f['cands'][f['idx']]; f['idx'] += 1
-    seg=(f['bi'], L, P, N, m, nc_[1]-nc_[0])
-    if ul == 0:
-        c2, u2 = fresh(f['bi']+1) if f['bi']+1 < len(blocks) else ((), 0)
-        nf=dict(bi=f['bi']+1, k=f['k']+m, cint=nc_, cnt=c2, ul=u2, cands=None, idx=0, seg=seg)
-    else:
-        nf=dict(bi=f['bi'], k=f['k']+m, cint=nc_, cnt=cn, ul=ul, cands=None, idx=0, seg=seg)
-    stack.append(nf)
-    if nf['k'] > best_k:
-        best_k=nf['k']; best_stack=list(stack); since=0
-        if nf['bi'] >= shown + 25:
-            shown = nf['bi']
-            print('block', shown, 'step ticks', best_k, 'segments', len(stack) - 1, file=sys.stderr, flush=True)
-    else: since+=1
-segs=[f['seg'] for f in best_stack[1:]]
-print('levels', sorted(AMASS.items()), file=sys.stderr)
-k=best_k
-print('backtracks', backtracks, 'stopped at block', best_stack[-1]['bi'], 'tick', evt[k] if k < len(evt) else None, file=sys.stderr)
-for x in segs: print(*x)
-print('segments', len(segs), 'step ticks explained', k, 'of', len(evt))
+
+def concrete(segs):
+    """Integer (c, P) per segment: a backward pass of the starts from which
+    the rest fits (intervals), then a forward choice that looks one segment
+    ahead. Returns the choices
+    and the number of segments where the rest had to start afresh."""
+    def periods(p):
+        step = (p.phi - p.plo) // 40000 + 1
+        return range(p.plo, p.phi + 1, step)
+    back = [None] * (len(segs) + 1); back[-1] = (-(1 << 62), 1 << 62); breaks = 0
+    for j in range(len(segs) - 1, -1, -1):
+        L, N, b, p = segs[j]; A, B = back[j + 1]
+        for attempt in (0, 1):
+            lo = hi = None
+            for P in periods(p):
+                x, y = p.cmin(P), p.cmax(P)
+                if attempt == 0: x, y = max(x, A - N * P), min(y, B - N * P)
+                if x <= y:
+                    lo = x if lo is None else min(lo, x); hi = y if hi is None else max(hi, y)
+            if lo is not None: break
+            breaks += 1
+        back[j] = (lo, hi)
+    def fits(j, c):
+        """The periods of segment j that start at c and end where the rest fits."""
+        L, N, b, p = segs[j]; A, B = back[j + 1]
+        return [P for P in periods(p) if p.cmin(P) <= c <= p.cmax(P) and A <= c + N * P <= B]
+    out = []; c = (back[0][0] + back[0][1]) // 2
+    for j, (L, N, b, p) in enumerate(segs):
+        A, B = back[j + 1]; mid = (A + B) // 2
+        ok = sorted(fits(j, c), key=lambda P: abs(c + N * P - mid))
+        # one segment of look-ahead: the intervals are wider than the integer starts
+        got = next((P for P in ok[:64] if j + 1 == len(segs) or fits(j + 1, c + N * P)), None)
+        if got is None and ok: got = ok[0]
+        if got is None:
+            got = next((P for P in periods(p) if p.cmin(P) <= c <= p.cmax(P)), p.plo)
+        out.append((c, got)); c += N * got
+        if not A <= c <= B: c = mid
+    return out, breaks
+
+
+def regenerate(model, moves, segs, conc, size):
+    """The log the model writes from the segments' (L, N, move, c, P)."""
+    NA = len(moves[0]); out = bytearray(size); dirs = []; prev = -1; cnt = None
+    for (L, N, b, _), (c, P) in zip(segs, conc):
+        S = [abs(v) for v in moves[b]]; E = max(S); thr = E << LMAX
+        if b != prev:
+            cnt = [thr >> 1] * NA; prev = b
+            dirs.append((c + P, sum(1 << a for a in range(NA) if moves[b][a] < 0)))
+        inc = [v << (LMAX - L) for v in S]
+        for i in range(1, N + 1):
+            for a in range(NA):
+                cnt[a] += inc[a]
+                if cnt[a] > thr:
+                    cnt[a] -= thr
+                    t = (c + i * P) // model.ct
+                    if 0 <= t < size: out[t] |= 1 << (2 * a)
+    dirs.sort(); di = 0; cur = 0
+    for t in range(size):
+        while di < len(dirs) and dirs[di][0] // model.ct <= t: cur = dirs[di][1]; di += 1
+        for a in range(NA): out[t] |= ((cur >> a) & 1) << (2 * a + 1)
+    return out
+
+
+def gamma(v):
+    """Bits of a signed Elias-gamma code."""
+    return 2 * int(math.log2(2 * abs(v) + (1 if v < 0 else 0) + 1)) + 1
+
+
+def cost(segs, conc, moves):
+    """Estimated bits: segments (step count, period) by their place in the
+    move (first, second, later), moves (step counts)."""
+    seg_bits = [0, 0, 0]; hist = []; misses = []
+    for (L, N, b, p), (c, P) in zip(segs, conc):
+        same = [r for bb, r in hist[-2:] if bb == b] if hist and hist[-1][0] == b else []
+        if not same:
+            seg_bits[0] += 19
+        else:
+            rate = 2 * same[-1] - same[0] if len(same) == 2 else same[-1]
+            q = (round(1 / rate) >> L) if rate > 0 else P
+            r = 0 if p.plo <= q <= p.phi else (q - p.phi if q > p.phi else q - p.plo)
+            seg_bits[min(len(same), 2)] += 1 + gamma(r); misses.append(abs(r))
+        hist.append((b, 1.0 / (P << L)))
+    move_bits = sum(gamma(v) for m in moves for v in m)
+    misses.sort()
+    return seg_bits, move_bits, misses
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('log'); ap.add_argument('job')
+    ap.add_argument('--steps-mm', type=int, default=100)
+    ap.add_argument('--cycles-per-tick', type=int, default=640)
+    ap.add_argument('--thresholds', default='2000,4000,8000')
+    ap.add_argument('--segment-cycles', type=int, default=160000)
+    ap.add_argument('--segments', help='write the fitted segments (level, interrupts, move, c, P) as JSON')
+    a = ap.parse_args()
+    model = Model(a.cycles_per_tick, [int(v) for v in a.thresholds.split(',')], a.segment_cycles)
+    moves = read_moves(a.job, a.steps_mm)
+    d, evt, evm, dirch = read_log(a.log, len(moves[0]))
+    k, segs = fit(model, moves, evt, evm, dirch)
+    last = segs[-1][2] if segs else -1
+    print('moves fitted', last + 1 if k == len(evt) else last, 'of', len(moves))
+    print('step ticks matched', k, 'of', len(evt))
+    print('segments', len(segs), 'levels', {L: sum(1 for s in segs if s[0] == L) for L in range(LMAX + 1)})
+    if k < len(evt): return 1
+    conc, breaks = concrete(segs)
+    out = regenerate(model, moves, segs, conc, len(d))
+    bad = [t for t in range(len(d)) if d[t] != out[t]]
+    print('integer periods chosen; chain restarts', breaks)
+    print('ticks regenerated differently', len(bad), 'of', len(d))
+    parts, mb, misses = cost(segs, conc, moves)
+    sb = sum(parts)
+    print('estimated bits: segments', sb, '(%.2f a segment; first, second, later segments of a move:' % (sb / len(segs)),
+          *parts, end='); ')
+    print('moves', mb, 'total bytes', (sb + mb + 7) // 8)
+    if misses:
+        print('period residuals (timer cycles): median', misses[len(misses) // 2],
+              'p90', misses[len(misses) * 9 // 10], 'zero', sum(1 for m in misses if m == 0))
+    if a.segments:
+        json.dump([[L, N, b, c, P] for (L, N, b, _), (c, P) in zip(segs, conc)], open(a.segments, 'w'))
+    return 0 if not bad else 2
+
+
+if __name__ == '__main__':
+    sys.exit(main())
