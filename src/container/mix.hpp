@@ -29,9 +29,10 @@
 
 namespace stepzip::stz {
 
-/// Hashed context models of every predictor (a compile-time count, so that
-/// the per-bit loops over them unroll).
-inline constexpr int kMixMaxModels = 6;
+/// Hashed context models of a predictor: kMixBaseModels, or kMixMaxModels
+/// with the curvature flag (docs/FORMAT.md 1.11.1).
+inline constexpr int kMixBaseModels = 6;
+inline constexpr int kMixMaxModels = 8;
 /// log2 of the entries of each hashed table.
 inline constexpr int kMixTableBits = 20;
 /// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
@@ -148,9 +149,10 @@ inline HashedTables& thread_tables() {
 /// The mixing predictor of one block (docs/FORMAT.md "Mixed predictions").
 class MixPredictor {
 public:
-    /// kMixMaxModels hashed context models; `base`: the coder's table of
-    /// primary contexts (a decision's slot is its primary context's index in it).
-    explicit MixPredictor(const Prob* base) : base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
+    /// `models` (kMixBaseModels or kMixMaxModels) hashed context models;
+    /// `base`: the coder's table of primary contexts (a decision's slot is
+    /// its primary context's index in it).
+    MixPredictor(const Prob* base, int models) : n_(models), base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
         mixdetail::HashedTables& shared = mixdetail::thread_tables();
         if (shared.busy) {
             own_ = std::make_unique<mixdetail::HashedTables>();
@@ -178,7 +180,7 @@ public:
         store_->busy = false;
     }
 
-    /// The context of hashed model k (0 <= k < kMixMaxModels) until it is set again.
+    /// The context of hashed model k (0 <= k < models) until it is set again.
     void set_context(int k, std::uint64_t v) noexcept {
         hash_[static_cast<std::size_t>(k)] = (v + static_cast<std::uint64_t>(k + 1)) * kHashA;
     }
@@ -263,7 +265,8 @@ private:
     static constexpr int kApmRate = 7;
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
-    static constexpr int n_ = kMixMaxModels;
+    int n_;  // hashed models in use
+
     const Prob* base_;
     std::unique_ptr<mixdetail::HashedTables> own_;  // when the thread's tables are taken
     mixdetail::HashedTables* store_ = nullptr;
@@ -288,6 +291,7 @@ struct MixEncIo {
     RangeEncoder rc;
     bool failed = false;
     MixPredictor* m = nullptr;
+    bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int b) {
         rc.encode_p(65536u - m->predict(p), b);
@@ -304,6 +308,7 @@ struct MixDecIo {
     RangeDecoder rc;
     bool failed = false;
     MixPredictor* m = nullptr;
+    bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int) {
         const int b = rc.decode_p(65536u - m->predict(p));
