@@ -399,13 +399,18 @@ private:
         mix_context(io, 5, ctx_join(ctx_join(p, history_ & 0x1FFu),
                                     static_cast<std::uint64_t>(cap(bit_length(in_chain_), 15))));
         if (curve_) {
-            mix_context(io, 6, ctx_join(ctx_join(p, static_cast<std::uint64_t>(cap(run_, 31))), runs_ & 0xFFFFFFFFFFFFull));
+            // The match's predicted symbol under three turns, and under how
+            // the runs grow or shrink (the two runs and turns before).
+            const auto q = static_cast<std::uint64_t>(pred + 1);
+            mix_context(io, 6, ctx_join(ctx_join(ctx_join(p, history_ & 0x1FFu), q),
+                                        static_cast<std::uint64_t>(len_bucket(len_))));
             const int r1 = static_cast<int>((runs_ >> 3) & 31), r2 = static_cast<int>((runs_ >> 11) & 31);
             const int t1 = static_cast<int>(runs_ & 7), t2 = static_cast<int>((runs_ >> 8) & 7);
             const std::uint64_t c = static_cast<std::uint64_t>(std::clamp(run_ - r1, -3, 3) + 3) * 8 +
                                     static_cast<std::uint64_t>(std::clamp(r1 - r2, -3, 3) + 3);
-            mix_context(io, 7, ctx_join(ctx_join(ctx_join(p, c), static_cast<std::uint64_t>(t1 * 8 + t2)),
-                                        static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(r1)), 5))));
+            mix_context(io, 7, ctx_join(ctx_join(ctx_join(ctx_join(p, c), static_cast<std::uint64_t>(t1 * 8 + t2)),
+                                                 static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(r1)), 5))),
+                                        q));
         }
     }
 
