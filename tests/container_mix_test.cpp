@@ -89,7 +89,7 @@ TEST(MixedModels, SegmentModelRoundTripsWithAndWithoutWindow) {
     for (const WindowView* view : {static_cast<const WindowView*>(nullptr), &window}) {
         const std::string payload = write_segment_model(b, Profile::eval8, cut, view, false, true);
         ASSERT_FALSE(payload.empty());
-        EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedSegment);
+        EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedSegment | kMixedCurvature);
         Block out;
         BlockCounts counts;
         auto r = read_segment_model(payload, Profile::eval8, 2, true, out, counts, "t", view, nullptr, false, true);
@@ -112,7 +112,7 @@ TEST(MixedModels, StepModelRoundTripsWithAndWithoutWindow) {
         for (int order = 0; order <= 4; ++order) {
             const std::string payload = write_mixed_step_model(b, order, view);
             ASSERT_FALSE(payload.empty());
-            EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedStep);
+            EXPECT_EQ(static_cast<unsigned char>(payload[0]), kMixedStep | kMixedCurvature);
             Block out;
             BlockCounts counts;
             auto r = read_step_model(payload, 2, true, out, counts, "t", view, kFormatVersion, nullptr, true);
@@ -148,14 +148,70 @@ TEST(MixedModels, DecoderErrorsNameThePayloadByte) {
     }
 }
 
-// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.11).
+// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.11;
+// model bytes 2 and 3, the curvature models, 1.11.1).
 constexpr const char* kTwoChains = "0 0 0000100001000010000\n5 -3 22223222232222\n";
+constexpr const char* kArc =
+    "0 0 00000000100000001000000100000100001000100010010010101010101011011011101110111101111101111110\n";
 
 TEST(MixedModels, PayloadBytesArePinned) {
     const Block b = fixed_block(kTwoChains);
-    EXPECT_EQ(hex(write_segment_model(b, Profile::eval8, greedy_cut(b, Profile::eval8), nullptr, false, true)),
+    const auto cut = greedy_cut(b, Profile::eval8);
+    EXPECT_EQ(hex(write_segment_model(b, Profile::eval8, cut, nullptr, false, true, false, false)),
               "00 02 04 21 02 00 00 01 e4 cd 11 64 15 4a 22 e7 d3 82 39 8a bc");
-    EXPECT_EQ(hex(write_mixed_step_model(b, 2)), "01 02 21 02 00 00 00 67 71 a3 69 a3 57 77 27 1b 35 1c bd 88");
+    EXPECT_EQ(hex(write_mixed_step_model(b, 2, nullptr, false)),
+              "01 02 21 02 00 00 00 67 71 a3 69 a3 57 77 27 1b 35 1c bd 88");
+    EXPECT_EQ(hex(write_mixed_step_model(b, 2)), "03 02 21 02 00 00 00 98 d6 bd 0d 89 65 9b 1a 10 8c 3a 81 f0");
+    // An arc (slopes turning slowly): the curvature models change the bytes.
+    const Block arc = fixed_block(kArc);
+    const auto arc_cut = greedy_cut(arc, Profile::eval8);
+    EXPECT_EQ(hex(write_segment_model(arc, Profile::eval8, arc_cut, nullptr, false, true, false, false)),
+              "00 01 08 5c 01 00 00 01 e5 be c3 34 67 5b 82 23 28 23 12 2d 34 a0 7a ce 6d b6 76 00 00");
+    EXPECT_EQ(hex(write_segment_model(arc, Profile::eval8, arc_cut, nullptr, false, true)),
+              "02 01 08 5c 01 00 00 01 e5 be c3 34 67 5b 82 23 28 1d 0d 2c ce 66 b3 02 30 c4 d9 4c 00");
+}
+
+// Both codings decode (model bytes 0-3); the curvature flag is part of the
+// coding (the same bytes under the other flag do not give the block back);
+// a model byte above 3 is corrupt at payload byte 0.
+TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
+    const Block b = fixed_block(contours(9, 60));
+    const auto cut = greedy_cut(b, Profile::eval8);
+    for (const bool curvature : {false, true}) {
+        std::string seg = write_segment_model(b, Profile::eval8, cut, nullptr, false, true, false, curvature);
+        std::string step = write_mixed_step_model(b, 2, nullptr, curvature);
+        ASSERT_FALSE(seg.empty());
+        ASSERT_FALSE(step.empty());
+        EXPECT_EQ(static_cast<unsigned char>(seg[0]), curvature ? 2u : 0u);
+        EXPECT_EQ(static_cast<unsigned char>(step[0]), curvature ? 3u : 1u);
+        Block out;
+        BlockCounts counts;
+        auto r = read_segment_model(seg, Profile::eval8, 2, true, out, counts, "t", nullptr, nullptr, false, true);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        EXPECT_EQ(out.chains, b.chains);
+        r = read_step_model(step, 2, true, out, counts, "t", nullptr, kFormatVersion, nullptr, true);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        EXPECT_EQ(out.chains, b.chains);
+        // The other flag: an error or other chains.
+        seg[0] = static_cast<char>(seg[0] ^ kMixedCurvature);
+        step[0] = static_cast<char>(step[0] ^ kMixedCurvature);
+        Block other;
+        r = read_segment_model(seg, Profile::eval8, 2, true, other, counts, "t", nullptr, nullptr, false, true);
+        EXPECT_TRUE(!r.ok() || other.chains != b.chains);
+        r = read_step_model(step, 2, true, other, counts, "t", nullptr, kFormatVersion, nullptr, true);
+        EXPECT_TRUE(!r.ok() || other.chains != b.chains);
+        for (const unsigned bad : {4u, 5u, 128u, 255u}) {
+            seg[0] = static_cast<char>(bad);
+            step[0] = static_cast<char>(bad);
+            r = read_segment_model(seg, Profile::eval8, 2, true, other, counts, "blk", nullptr, nullptr, false, true);
+            ASSERT_FALSE(r.ok());
+            EXPECT_EQ(r.error().code, Errc::corrupt);
+            EXPECT_EQ(r.error().message.rfind("blk byte 0: ", 0), 0u) << r.error().message;
+            r = read_step_model(step, 2, true, other, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+            ASSERT_FALSE(r.ok());
+            EXPECT_EQ(r.error().message.rfind("blk byte 0: ", 0), 0u) << r.error().message;
+        }
+    }
 }
 
 std::size_t count_blocks(const std::string& frame, unsigned type) {
@@ -276,7 +332,7 @@ TEST(MixTables, ThreadTablesComeBackClearAndANestedPredictorCodesTheSame) {
         {
             // While a predictor holds the thread's tables, the next one makes its own.
             Prob base[16]{};
-            MixPredictor holder(base);
+            MixPredictor holder(base, kMixBaseModels);
             EXPECT_TRUE(mixdetail::thread_tables().busy);
             EXPECT_EQ(write_mixed_step_model(a, 1), fresh);
         }

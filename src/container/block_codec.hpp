@@ -34,8 +34,15 @@ inline constexpr std::uint64_t kMetaPatentStats = 1;
 enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, kStepModel = 4, kTable = 5, kMixedModel = 6,
                         kExtended = 7 };
 /// Block type 7 (the extended block): the payload's first byte is a subtype.
-/// Block type 6 (mixed predictions): the payload's first byte, the model.
-inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1;
+/// Block type 6 (mixed predictions): the payload's first byte, the model
+/// (bit 0) and the flag kMixedCurvature (bit 1: two more hashed models,
+/// docs/FORMAT.md 1.11.1).
+inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1, kMixedCurvature = 2;
+/// The model (kSegmentModel or kStepModel) a type 6 payload's first byte
+/// names, or kEnd for a byte that names none.
+inline constexpr unsigned mixed_model_of(unsigned byte) {
+    return byte > (kMixedStep | kMixedCurvature) ? kEnd : (byte & kMixedStep) ? kStepModel : kSegmentModel;
+}
 /// Block flags (version 1: the flags byte; version 2: bits 3.. of the block byte).
 /// kFlagWindow (version 2 only): the block's models start from the window.
 inline constexpr unsigned kFlagContinues = 1u, kFlagOpen = 2u, kFlagWindow = 4u;

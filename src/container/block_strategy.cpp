@@ -600,8 +600,28 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             consider(kStepModel, make_stored_record(kStepModel, job.flags, model)))
             job.order = order;
     }
-    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best, true))
-        consider(kChains, make_block_record(kChains, job.flags, chain_payload, s.level));
+    // From the strong level a segment-model or step-model block is written
+    // mixed (mixed_pass) when that is 1/64 smaller: zstd's blocks must beat
+    // that size, not the plain model's. The mixed coding (no window) is made
+    // only when one of them beats the plain model.
+    std::size_t mixed_size = 0;
+    auto beats_model = [&](const std::string& rec) {
+        if (s.level < kStrongLevel || s.timed || (type != kSegmentModel && type != kStepModel) || rec.empty() ||
+            rec.size() >= best.size())
+            return true;
+        if (mixed_size == 0) {
+            const std::string m = type == kSegmentModel ? write_segment_model(block, s.profile, job.cut, nullptr, false, true)
+                                  : mixed_step_model_pays(block) ? write_mixed_step_model(block, 1)
+                                                                 : std::string();
+            const std::size_t size = m.empty() ? SIZE_MAX : make_stored_record(kMixedModel, job.flags, m).size();
+            mixed_size = size * 64 <= best.size() * 63 ? size : SIZE_MAX;
+        }
+        return rec.size() < mixed_size;
+    };
+    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best, true)) {
+        std::string rec = make_block_record(kChains, job.flags, chain_payload, s.level);
+        if (beats_model(rec)) consider(kChains, std::move(rec));
+    }
     const bool chain_kind = !best.empty();
     if (job.bytes.size() > kMaxBlockBytes && !chain_kind) {
         job.error = make_error(Errc::limit, s.source + ": a block of " + std::to_string(job.bytes.size()) +
@@ -617,8 +637,10 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         put_varint(raw, block.chains.size());
         put_varint(raw, job.steps);
         raw += job.bytes;
-        if ((!s.thorough || zstd_may_win(raw, best)) && consider(kRaw, make_block_record(kRaw, job.flags, raw, s.level)))
-            job.raw_payload = std::move(raw);
+        if (!s.thorough || zstd_may_win(raw, best)) {
+            std::string rec = make_block_record(kRaw, job.flags, raw, s.level);
+            if (beats_model(rec) && consider(kRaw, std::move(rec))) job.raw_payload = std::move(raw);
+        }
     }
     if (best.empty()) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");

@@ -237,7 +237,7 @@ private:
             auto contribution = std::make_shared<WindowBlock>();
             const WindowView view = window_.view();
             const bool step_model = b.type == kStepModel || (b.type == kMixedModel && !payload.empty() &&
-                                                             static_cast<unsigned char>(payload[0]) == kMixedStep);
+                                                             mixed_model_of(static_cast<unsigned char>(payload[0])) == kStepModel);
             if (steps_frame_ && !steps_ && step_model && (b.flags & kFlagWindow)) start_history(view);
             if (steps_) {
                 const std::uint64_t end = step_history_end(*steps_);
@@ -280,9 +280,7 @@ private:
                     return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");
                 const unsigned model = !mixed ? b.type
                                        : payload.empty() ? kEnd
-                                       : static_cast<unsigned char>(payload[0]) == kMixedSegment ? kSegmentModel
-                                       : static_cast<unsigned char>(payload[0]) == kMixedStep ? kStepModel
-                                                                                            : kEnd;
+                                       : mixed_model_of(static_cast<unsigned char>(payload[0]));
                 if (model == kEnd)
                     return make_error(Errc::corrupt, what + " byte 0: unknown model of a mixed-model block");
                 if (b.type == kChains) {

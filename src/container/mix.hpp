@@ -29,9 +29,10 @@
 
 namespace stepzip::stz {
 
-/// Hashed context models of every predictor (a compile-time count, so that
-/// the per-bit loops over them unroll).
-inline constexpr int kMixMaxModels = 6;
+/// Hashed context models of a predictor: kMixBaseModels, or kMixMaxModels
+/// with the curvature flag (docs/FORMAT.md 1.11.1).
+inline constexpr int kMixBaseModels = 6;
+inline constexpr int kMixMaxModels = 8;
 /// log2 of the entries of each hashed table.
 inline constexpr int kMixTableBits = 20;
 /// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
@@ -148,9 +149,10 @@ inline HashedTables& thread_tables() {
 /// The mixing predictor of one block (docs/FORMAT.md "Mixed predictions").
 class MixPredictor {
 public:
-    /// kMixMaxModels hashed context models; `base`: the coder's table of
-    /// primary contexts (a decision's slot is its primary context's index in it).
-    explicit MixPredictor(const Prob* base) : base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
+    /// `models` (kMixBaseModels or kMixMaxModels) hashed context models;
+    /// `base`: the coder's table of primary contexts (a decision's slot is
+    /// its primary context's index in it).
+    MixPredictor(const Prob* base, int models) : n_(models), base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
         mixdetail::HashedTables& shared = mixdetail::thread_tables();
         if (shared.busy) {
             own_ = std::make_unique<mixdetail::HashedTables>();
@@ -178,7 +180,7 @@ public:
         store_->busy = false;
     }
 
-    /// The context of hashed model k (0 <= k < kMixMaxModels) until it is set again.
+    /// The context of hashed model k (0 <= k < models) until it is set again.
     void set_context(int k, std::uint64_t v) noexcept {
         hash_[static_cast<std::size_t>(k)] = (v + static_cast<std::uint64_t>(k + 1)) * kHashA;
     }
@@ -187,12 +189,24 @@ public:
 
     /// Probability (1..65535) that the decision of primary context `pr` is 1.
     [[gnu::always_inline]] std::uint32_t predict(const Prob& pr) noexcept {
+        return n_ == kMixMaxModels ? predict_n<kMixMaxModels>(pr) : predict_n<kMixBaseModels>(pr);
+    }
+
+    /// Trains every part on the coded bit (after predict()).
+    [[gnu::always_inline]] void update(Prob& pr, int bit) noexcept {
+        if (n_ == kMixMaxModels) update_n<kMixMaxModels>(pr, bit);
+        else update_n<kMixBaseModels>(pr, bit);
+    }
+
+private:
+    template <int N>
+    [[gnu::always_inline]] std::uint32_t predict_n(const Prob& pr) noexcept {
         const std::uint64_t slot =
             (reinterpret_cast<std::uintptr_t>(&pr) - reinterpret_cast<std::uintptr_t>(base_)) / sizeof(Prob);
         const std::uint64_t group = slot >> 4;
         const std::size_t low = static_cast<std::size_t>(slot & 15);
         x_[0] = stretch(65536u - pr.p);
-        for (int k = 0; k < n_; ++k) {
+        for (int k = 0; k < N; ++k) {
             const std::uint64_t h = (hash_[static_cast<std::size_t>(k)] ^ (group * kHashB)) * kHashA;
             const std::size_t i = ((static_cast<std::size_t>(k) << kMixTableBits) |
                                    (static_cast<std::size_t>(h >> (64 - (kMixTableBits - 4))) << 4)) | low;
@@ -200,11 +214,11 @@ public:
             dirty_[i >> mixdetail::HashedTables::kChunkBits] = 1;
             x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p());
         }
-        x_[static_cast<std::size_t>(n_) + 1] = 256;
+        x_[static_cast<std::size_t>(N) + 1] = 256;
         // Two mixers, each its weight set's dot product; their outputs averaged.
         w1_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
         w2_ = &weights_[(static_cast<std::size_t>(kMixSets + field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1)) * kInputs];
-        const std::int32_t s1 = dot(w1_), s2 = dot(w2_);
+        const std::int32_t s1 = dot<N>(w1_), s2 = dot<N>(w2_);
         out1_ = mixdetail::squash(s1);
         out2_ = mixdetail::squash(s2);
         const std::int32_t s = (s1 + s2) >> 1;
@@ -222,30 +236,31 @@ public:
         return static_cast<std::uint32_t>(p);
     }
 
-    /// Trains every part on the coded bit (after predict()).
-    [[gnu::always_inline]] void update(Prob& pr, int bit) noexcept {
-        train(w1_, out1_, bit);
-        train(w2_, out2_, bit);
+    template <int N>
+    [[gnu::always_inline]] void update_n(Prob& pr, int bit) noexcept {
+        train<N>(w1_, out1_, bit);
+        train<N>(w2_, out2_, bit);
         stz::update(pr, bit);
-        for (int k = 0; k < n_; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
+        for (int k = 0; k < N; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
         const std::int32_t target = bit ? 65535 : 0;
         *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> kApmRate));
     }
 
-private:
     // A mixer's output, stretched: the dot product of its weights (16.16
     // fixed point) and the inputs, clamped to +-2047.
+    template <int N>
     [[gnu::always_inline]] std::int32_t dot(const std::int32_t* w) const noexcept {
         std::int64_t d = 0;
-        for (int k = 0; k <= n_ + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
+        for (int k = 0; k <= N + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
         d >>= 16;
         return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
     }
     // Each weight moves by input * error * kRate / 2^16, the error that of
     // the mixer's own output; weights stay within +-kMaxWeight.
+    template <int N>
     [[gnu::always_inline]] void train(std::int32_t* w, std::int32_t out, int bit) noexcept {
         const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kRate;
-        for (int k = 0; k <= n_ + 1; ++k) {
+        for (int k = 0; k <= N + 1; ++k) {
             std::int64_t v = w[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
             if (v > kMaxWeight) v = kMaxWeight;
             if (v < -kMaxWeight) v = -kMaxWeight;
@@ -263,7 +278,8 @@ private:
     static constexpr int kApmRate = 7;
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
-    static constexpr int n_ = kMixMaxModels;
+    int n_;  // hashed models in use
+
     const Prob* base_;
     std::unique_ptr<mixdetail::HashedTables> own_;  // when the thread's tables are taken
     mixdetail::HashedTables* store_ = nullptr;
@@ -288,6 +304,7 @@ struct MixEncIo {
     RangeEncoder rc;
     bool failed = false;
     MixPredictor* m = nullptr;
+    bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int b) {
         rc.encode_p(65536u - m->predict(p), b);
@@ -304,6 +321,7 @@ struct MixDecIo {
     RangeDecoder rc;
     bool failed = false;
     MixPredictor* m = nullptr;
+    bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int) {
         const int b = rc.decode_p(65536u - m->predict(p));

@@ -22,10 +22,12 @@ namespace stepzip::stz {
 /// same fields, coded with mixed predictions; docs/FORMAT.md 1.11).
 /// `rates`: the payload of a timed block (block type 7, subtype byte 0 first;
 /// phases predicted by TimedRates; docs/FORMAT.md "Timed block").
+/// `curvature` (type 6 only): with the two curvature models (model byte
+/// flag kMixedCurvature, docs/FORMAT.md 1.11.1).
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs,
                                 const WindowView* window = nullptr, bool timed = false, bool mixed = false,
-                                bool rates = false);
+                                bool rates = false, bool curvature = true);
 
 /// Payload of a step-model block (block type 4); empty when the block is not
 /// two-axis (the step model codes Freeman directions only). `order` 1..4
@@ -37,7 +39,9 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 /// The payload of a block type 6 of the step model (model byte 1, then the
 /// step-model fields with context order `order` (0..4), coded with mixed
 /// predictions; docs/FORMAT.md 1.11); empty when the block is not two-axis.
-std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr);
+/// `curvature`: with the two curvature models (docs/FORMAT.md 1.11.1).
+std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr,
+                                   bool curvature = true);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
 /// `expand`) and add its counts to `counts`. Errors: Errc::corrupt,

@@ -89,7 +89,6 @@ struct Contexts {
     UIntModel rank[8];       // its rank, ctx bit_length(previous rank) (cap 7)
 };
 
-constexpr int kSegmentMixModels = 6;  // hashed context models of the mixed predictions
 
 constexpr std::size_t kShapes = 1024;    // recent distinct segments, most recent first
 constexpr std::size_t kSuccessors = 8;  // segments seen after a given segment
@@ -233,9 +232,10 @@ public:
         : io_(io), p_(p), axes_(axes), timed_(timed), ctx_(std::make_unique<Contexts>()), shape_index_(1024, 0) {
         succ_.resize(1);  // succ_[0]: after no segment
         if constexpr (kMixedIo<Io>) {
-            static_assert(kSegmentMixModels == kMixMaxModels);
             static_assert(sizeof(Contexts) % sizeof(Prob) == 0);
-            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()));
+            curve_ = io_.curvature;
+            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()),
+                                                    curve_ ? kMixMaxModels : kMixBaseModels);
             io_.m = mixer_.get();
         }
     }
@@ -534,6 +534,12 @@ private:
             turn_hist_ = (turn_hist_ << 9) | prev_dir_;
         }
         for (int i = 0; i < axes_; ++i) from_start_[i] += seg.delta[i];
+        // The segment before this one (last_oct_: its octant until here).
+        before_l_ = prev_l_;
+        before_s_ = prev_s_[0];
+        before_oct_ = last_oct_;
+        last_oct_ = prev_oct_;
+        prev_phase_ = seg.phase[0];
         l_hist_ = (l_hist_ << 4) | static_cast<unsigned>(cap(bit_length(static_cast<std::uint64_t>(std::llabs(seg.delta[lead]))), 15));
         prev_l_ = std::llabs(seg.delta[lead]);
         int j = 0;
@@ -574,6 +580,22 @@ private:
         }
         mix_context(io_, 4, ctx_join(ctx_join(k, close), at));
         mix_context(io_, 5, ctx_join(ctx_join(k, prev_shape_), at));
+        if (curve_) {
+            // The octants and slope classes of the last two segments; their
+            // leading and minor totals.
+            const std::uint64_t q1 = slope_class(prev_s_[0], prev_l_), q2 = slope_class(before_s_, before_l_);
+            mix_context(io_, 6, ctx_join(ctx_join(ctx_join(k, static_cast<std::uint64_t>(prev_oct_) * 64 + q1),
+                                                  static_cast<std::uint64_t>(before_oct_) * 64 + q2),
+                                         static_cast<std::uint64_t>(prev_turn_)));
+            mix_context(io_, 7, ctx_join(ctx_join(ctx_join(ctx_join(k, static_cast<std::uint64_t>(prev_l_)),
+                                                           static_cast<std::uint64_t>(prev_s_[0])),
+                                                  static_cast<std::uint64_t>(before_l_)),
+                                         static_cast<std::uint64_t>(before_s_)));
+        }
+    }
+    // A segment's slope minor / leading in 32nds, rounded (0..32).
+    static std::uint64_t slope_class(std::int64_t s, std::int64_t l) {
+        return l <= 0 ? 0 : static_cast<std::uint64_t>((s * 32 + l / 2) / l);
     }
 
     bool fail(const char* what) {
@@ -617,6 +639,15 @@ private:
             mix_context(io_, 5, ctx_join(ctx_join(ctx_join(1, static_cast<std::uint64_t>(lead) << 8 | neg),
                                                   static_cast<std::uint64_t>(prev_l_)),
                                          static_cast<std::uint64_t>(prev_s_[0])));
+        if (curve_ && axes_ == 2) {
+            // The direction with the slopes of the two segments before, and
+            // with their leading totals.
+            const std::uint64_t dir = static_cast<std::uint64_t>(lead) << 8 | neg;
+            const std::uint64_t slopes = slope_class(prev_s_[0], prev_l_) * 64 + slope_class(before_s_, before_l_);
+            mix_context(io_, 6, ctx_join(ctx_join(ctx_join(3, dir), slopes), static_cast<std::uint64_t>(turn)));
+            mix_context(io_, 7, ctx_join(ctx_join(ctx_join(4, dir), static_cast<std::uint64_t>(prev_l_)),
+                                         static_cast<std::uint64_t>(before_l_) * 8 + static_cast<std::uint64_t>(turn)));
+        }
         io_.field(5);
         const std::uint64_t l1 = code_uint(io_, ctx_->lead[lctx], static_cast<std::uint64_t>(l - 1));
         if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
@@ -626,6 +657,22 @@ private:
             mix_context(io_, 5, ctx_join(ctx_join(ctx_join(2, static_cast<std::uint64_t>(lead) << 8 | neg),
                                                   static_cast<std::uint64_t>(l)),
                                          static_cast<std::uint64_t>(prev_l_)));
+        if (curve_ && axes_ == 2) {
+            // Curvature continuity: the minor total of the slope the two
+            // segments before extrapolate (in one octant, no turn), against
+            // the coded prediction (the previous slope).
+            const std::int64_t p1 = predict_minor(l, prev_s_[0], prev_l_);
+            std::int64_t p2 = p1;
+            if (turn == 0 && prev_oct_ == before_oct_)
+                p2 = (l * (2 * prev_s_[0] * before_l_ - before_s_ * prev_l_) + prev_l_ * before_l_ / 2) /
+                     (prev_l_ * before_l_);
+            const auto dd = static_cast<std::uint64_t>(std::clamp<std::int64_t>(p2 - p1, -4, 4) + 4);
+            const auto lb = static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(l)), 11));
+            mix_context(io_, 6, ctx_join(ctx_join(ctx_join(5, dd), static_cast<std::uint64_t>(turn)), lb));
+            mix_context(io_, 7, ctx_join(ctx_join(ctx_join(6, static_cast<std::uint64_t>(l)),
+                                                  static_cast<std::uint64_t>(prev_l_)),
+                                         static_cast<std::uint64_t>(prev_s_[0])));
+        }
         seg = Segment{};
         int j = 0;
         for (int i = 0; i < axes_; ++i) {
@@ -652,6 +699,12 @@ private:
             if (r.hi - r.lo == 1) {
                 seg.phase[k] = r.lo;
                 continue;
+            }
+            if (curve_ && axes_ == 2) {  // the phase by the segment's totals, and by the previous phase
+                mix_context(io_, 6, ctx_join(ctx_join(7, static_cast<std::uint64_t>(seg.delta[0])),
+                                             static_cast<std::uint64_t>(seg.delta[1])));
+                mix_context(io_, 7, ctx_join(ctx_join(8, static_cast<std::uint64_t>(prev_phase_)),
+                                             static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(l)), 11))));
             }
             io_.field(7);
         const std::int64_t d = code_sint(io_, ctx_->phase[bl], Io::kDecode ? 0 : want->phase[k] - def);
@@ -694,6 +747,11 @@ private:
     std::uint64_t l_hist_ = 0;     // bit lengths of the leading totals, 4 bits each, latest lowest
     std::uint32_t shape1_ = kNone, shape2_ = kNone;  // the last two shapes, across chains
     Point from_start_{};           // the chain's position relative to its start
+    // The curvature models (FORMAT.md 1.11.1).
+    bool curve_ = false;
+    std::int64_t before_l_ = 1, before_s_ = 0;  // the segment before the previous one: leading, first minor total
+    int before_oct_ = 0, last_oct_ = 0;         // its octant; the previous segment's octant (kept by note_segment)
+    std::int64_t prev_phase_ = 0;               // the previous segment's first phase
 };
 
 std::int64_t steps_of(Profile p, const Segment& s, int axes) {
@@ -768,7 +826,7 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
         put_u8(out, kTimedSubtype);
         put_u8(out, kMixedIo<Io> ? kTimedMixed : kTimedPlain);
     } else if constexpr (kMixedIo<Io>) {
-        put_u8(out, kMixedSegment);
+        put_u8(out, kMixedSegment | (io.curvature ? kMixedCurvature : 0u));
     }
     put_varint(out, c.nchains);
     put_varint(out, c.nsegments);
@@ -818,10 +876,11 @@ std::string segment_model_with(Io& io, const Block& block, Profile p,
 
 std::string write_segment_model(const Block& block, Profile p,
                                 const std::vector<std::vector<Segment>>& segs, const WindowView* window,
-                                bool timed, bool mixed, bool rates) {
+                                bool timed, bool mixed, bool rates, bool curvature) {
     const TimedPrediction t = rates ? TimedPrediction::rates : timed ? TimedPrediction::since : TimedPrediction::none;
     if (mixed) {
         MixEncIo io;
+        io.curvature = curvature && !rates;
         return segment_model_with(io, block, p, segs, window, t);
     }
     EncIo io;
@@ -846,6 +905,7 @@ Result<void> read_segment_model_with(std::string_view payload, Profile p, int ax
                                      const WindowView* window, SegmentItems* items, TimedPrediction timed) {
     Cursor cur(payload);
     Counts c;
+    bool curvature = false;
     if (timed == TimedPrediction::rates) {
         unsigned subtype, coding;
         if (!cur.u8(subtype) || subtype != kTimedSubtype)
@@ -856,8 +916,9 @@ Result<void> read_segment_model_with(std::string_view payload, Profile p, int ax
             return make_error(Errc::corrupt, where + " byte 1: unknown coding of a timed block");
     } else if constexpr (kMixedIo<Io>) {
         unsigned kind;
-        if (!cur.u8(kind) || kind != kMixedSegment)
+        if (!cur.u8(kind) || mixed_model_of(kind) != kSegmentModel)
             return make_error(Errc::corrupt, where + " byte 0: not a mixed segment model");
+        curvature = (kind & kMixedCurvature) != 0;
     }
     if (!cur.varint(c.nchains) || !cur.varint(c.nsegments) || !cur.varint(c.nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
@@ -874,6 +935,7 @@ Result<void> read_segment_model_with(std::string_view payload, Profile p, int ax
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), nullptr);  // the coder sets the predictor
         else return Io(payload.substr(base));
     }();
+    if constexpr (kMixedIo<Io>) io.curvature = curvature;
     SegmentCoder<Io> coder(io, p, axes, timed);
     coder.set_grid(static_cast<std::int64_t>(grid));
     if (window) coder.prime(*window);

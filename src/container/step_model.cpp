@@ -29,7 +29,6 @@ constexpr std::int64_t kFreemanDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
 constexpr std::int64_t kFreemanDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 constexpr std::size_t kMinMatch = 12;    // steps hashed to find a match
 constexpr int kMaxStepOrder = 4;  // previous turns in the direction context
-constexpr int kStepMixModels = 6;  // hashed context models of the mixed predictions
 
 int cap(int v, int hi) { return v < hi ? v : hi; }
 int len_bucket(std::uint64_t len) {
@@ -251,9 +250,10 @@ public:
           predict_starts_(predict_starts), own_(shared ? nullptr : std::make_unique<StepHistory>()),
           h_(shared ? *shared : *own_) {
         if constexpr (kMixedIo<Io>) {
-            static_assert(kStepMixModels == kMixMaxModels);
             static_assert(sizeof(StepContexts) % sizeof(Prob) == 0);
-            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()));
+            curve_ = io_.curvature;
+            mixer_ = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(ctx_.get()),
+                                                    curve_ ? kMixMaxModels : kMixBaseModels);
             io_.m = mixer_.get();
         }
     }
@@ -398,6 +398,20 @@ private:
         mix_context(io, 4, ctx_join(ctx_join(p, where), history_ & 7));
         mix_context(io, 5, ctx_join(ctx_join(p, history_ & 0x1FFu),
                                     static_cast<std::uint64_t>(cap(bit_length(in_chain_), 15))));
+        if (curve_) {
+            // The match's predicted symbol under three turns, and under how
+            // the runs grow or shrink (the two runs and turns before).
+            const auto q = static_cast<std::uint64_t>(pred + 1);
+            mix_context(io, 6, ctx_join(ctx_join(ctx_join(p, history_ & 0x1FFu), q),
+                                        static_cast<std::uint64_t>(len_bucket(len_))));
+            const int r1 = static_cast<int>((runs_ >> 3) & 31), r2 = static_cast<int>((runs_ >> 11) & 31);
+            const int t1 = static_cast<int>(runs_ & 7), t2 = static_cast<int>((runs_ >> 8) & 7);
+            const std::uint64_t c = static_cast<std::uint64_t>(std::clamp(run_ - r1, -3, 3) + 3) * 8 +
+                                    static_cast<std::uint64_t>(std::clamp(r1 - r2, -3, 3) + 3);
+            mix_context(io, 7, ctx_join(ctx_join(ctx_join(ctx_join(p, c), static_cast<std::uint64_t>(t1 * 8 + t2)),
+                                                 static_cast<std::uint64_t>(cap(bit_length(static_cast<std::uint64_t>(r1)), 5))),
+                                        q));
+        }
     }
 
     void push(int sym) {
@@ -429,6 +443,7 @@ private:
     std::uint64_t history_ = 0;  // turns, 3 bits each, latest lowest (across chains)
     std::uint64_t runs_ = 0;     // finished runs: (length (cap 31) << 3 | turn after it), 8 bits each
     int run_ = 0;                // steps in the current direction
+    bool curve_ = false;
     std::int64_t dx_ = 0, dy_ = 0;  // position relative to the chain's start
     std::uint64_t in_chain_ = 0;
 };
@@ -438,17 +453,18 @@ private:
 namespace {
 
 template <class Io>
-std::string write_step_model_with(const Block& block, int order, const WindowView* window) {
+std::string write_step_model_with(const Block& block, int order, const WindowView* window, bool curvature = false) {
     Counts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
     std::string out;
-    if constexpr (kMixedIo<Io>) put_u8(out, kMixedStep);
+    if constexpr (kMixedIo<Io>) put_u8(out, kMixedStep | (curvature ? kMixedCurvature : 0u));
     put_varint(out, c.nchains);
     put_varint(out, c.nsteps);
     put_u8(out, static_cast<unsigned>(order));
     put_layout(out, block.layout);
     Io io;
+    if constexpr (kMixedIo<Io>) io.curvature = curvature;
     StepCoder<Io> coder(io, order, true);
     if (window) coder.prime(*window);
     Point ref{};
@@ -479,9 +495,9 @@ std::string write_step_model_order(const Block& block, int order, const WindowVi
 
 }  // namespace
 
-std::string write_mixed_step_model(const Block& block, int order, const WindowView* window) {
+std::string write_mixed_step_model(const Block& block, int order, const WindowView* window, bool curvature) {
     if (block.axes != 2 || order < 0 || order > kMaxStepOrder) return {};
-    return write_step_model_with<MixEncIo>(block, order, window);
+    return write_step_model_with<MixEncIo>(block, order, window, curvature);
 }
 
 std::string write_step_model(const Block& block, int order, const WindowView* window, int* chosen) {
@@ -512,13 +528,15 @@ Result<void> read_step_model_with(std::string_view payload, int axes, bool expan
                                   BlockCounts& counts, const std::string& where, const WindowView* window,
                                   int version, StepHistory* running) {
     Cursor cur(payload);
+    bool curvature = false;
     if (axes != 2) return make_error(Errc::corrupt, where + " byte 0: step-model block on " +
                                                         std::to_string(axes) + " axes");
     Counts c;
     if constexpr (kMixedIo<Io>) {
         unsigned kind;
-        if (!cur.u8(kind) || kind != kMixedStep)
+        if (!cur.u8(kind) || mixed_model_of(kind) != kStepModel)
             return make_error(Errc::corrupt, where + " byte 0: not a mixed step model");
+        curvature = (kind & kMixedCurvature) != 0;
     }
     if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
@@ -534,6 +552,7 @@ Result<void> read_step_model_with(std::string_view payload, int axes, bool expan
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), nullptr);  // the coder sets the predictor
         else return Io(payload.substr(base));
     }();
+    if constexpr (kMixedIo<Io>) io.curvature = curvature;
     StepCoder<Io> coder(io, static_cast<int>(order), version >= 2, window ? running : nullptr);
     if (window && !running) coder.prime(*window);
     start_output(out, expand, axes, std::move(*layout));
