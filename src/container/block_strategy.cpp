@@ -532,9 +532,13 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         if (s.thorough) chain_payload = write_chain_payload(block, s.profile, segs);
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
-            const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level));
-            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
+            TableItemKeys keys;
+            const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level), nullptr,
+                                                        nullptr, s.window_log != 0 ? &keys : nullptr);
+            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table))) {
                 job.cut = segs;
+                job.table_keys = std::move(keys);
+            }
         }
         // Lines and arcs (--arc-method): the arc cut's table block, at every
         // level, kept when smaller than every other encoding tried.
@@ -545,8 +549,10 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 return;
             }
             const std::string table = write_table_block(block, s.profile, arcs, table_effort(s.level));
-            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table)))
+            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table))) {
                 job.cut = std::move(arcs);
+                job.table_keys = {};
+            }
         }
         // The fast levels code small blocks by the segment model too: its
         // adaptive contexts need no tables (a table block's fixed cost), and
@@ -649,6 +655,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     job.type = type;
     job.record = std::move(best);
     if (type != kSegmentModel && type != kTable && type != kExtended) job.cut.clear();
+    if (type != kTable) job.table_keys = {};
     if (type == kRaw) job.stats = {};
     if (s.window_log != 0) {
         auto w = std::make_shared<WindowBlock>();
@@ -759,7 +766,12 @@ namespace {
 void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.type == kTable) {
         if (std::none_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); })) return;
-        const std::string table = write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window);
+        // The contribution holds the cut's items (note_items): their keys,
+        // from the first pass, are kept with it for the later blocks.
+        const TableItemKeys* own =
+            job.contribution ? &window_keys(*job.contribution, s.profile, job.block.axes, &job.table_keys) : nullptr;
+        const std::string table =
+            write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window, own);
         if (table.size() > kMaxBlockPayload) return;
         std::string rec = make_stored_record(kTable, job.flags | kFlagWindow, table);
         if (rec.size() < job.record.size()) job.record = std::move(rec);

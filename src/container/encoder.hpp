@@ -79,6 +79,7 @@ struct BlockJob {
     std::vector<std::vector<Segment>> cut;  ///< segment-model block: the cut coded
     int order = 0;                          ///< step-model block: the context order
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
+    TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
 
     // The round-trip proof.
     Block decoded;  ///< the block as the decoder sees it (chain blocks)

@@ -732,8 +732,33 @@ std::uint64_t start_grid(const Block& block, const std::vector<std::vector<Segme
 
 }  // namespace
 
+const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, TableItemKeys* made) {
+    std::call_once(b.table_keys_once, [&] {
+        const SegmentItems& w = b.items;
+        TableItemKeys& t = b.table_keys;
+        if (made && made->canon.size() == w.segments.size() &&
+            made->keys.size() == w.segments.size() + 2 * w.starts.size()) {
+            t = std::move(*made);
+            return;
+        }
+        t.canon.reserve(w.segments.size());
+        t.keys.reserve(w.segments.size() + 2 * w.starts.size());
+        std::size_t k = 0;
+        for (std::size_t c = 0; c < w.starts.size(); ++c) {
+            t.keys.push_back(key_of(1, w.starts[c], nullptr));
+            for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                t.canon.push_back(canonical(p, w.segments[k], axes));
+                t.keys.push_back(key_of(0, t.canon.back().delta, &t.canon.back().phase));
+            }
+            t.keys.push_back(2);
+        }
+    });
+    return b.table_keys;
+}
+
 std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
-                              const TableEffort& effort, const WindowView* window) {
+                              const TableEffort& effort, const WindowView* window, const TableItemKeys* own,
+                              TableItemKeys* made) {
     const int axes = block.axes;
     BlockHead h;
     h.nchains = block.chains.size();
@@ -743,45 +768,66 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
     // The window's items first (matches may reach them), then the block's.
-    if (window)
+    if (window) {
+        std::size_t nw = 0;
+        for (const auto& b : *window) nw += b->items.segments.size() + 2 * b->items.starts.size();
+        items.reserve(nw);
+        keys.reserve(nw);
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
-            std::size_t k = 0;
+            const TableItemKeys& t = window_keys(*b, p, axes);
+            auto si = static_cast<std::uint32_t>(cs.size()), di = static_cast<std::uint32_t>(deltas.size());
+            cs.insert(cs.end(), t.canon.begin(), t.canon.end());
+            deltas.insert(deltas.end(), w.starts.begin(), w.starts.end());
+            keys.insert(keys.end(), t.keys.begin(), t.keys.end());
             for (std::size_t c = 0; c < w.starts.size(); ++c) {
-                deltas.push_back(w.starts[c]);
-                items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
-                keys.push_back(key_of(1, w.starts[c], nullptr));
-                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    cs.push_back(canonical(p, w.segments[k], axes));
-                    items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
-                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
-                }
+                items.push_back(kStartTag | di++);
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q) items.push_back(kSegTag | si++);
                 items.push_back(kEndTag);
-                keys.push_back(2);
             }
         }
+    }
     const std::size_t first = items.size();
+    // The block's own keys and canonical segments: from `own` (made by an
+    // earlier coding of the same items) when it has their count, else
+    // computed here.
+    const TableItemKeys* mine = nullptr;
+    std::size_t own_segs = 0;
+    for (const auto& v : segs) own_segs += v.size();
+    if (own && own->canon.size() == own_segs && own->keys.size() == own_segs + 2 * block.chains.size()) mine = own;
+    const std::size_t first_seg = cs.size();
     {
         Point ref{};
+        std::size_t kk = 0, kc = 0;  // into mine->keys, mine->canon
         for (std::size_t i = 0; i < block.chains.size(); ++i) {
             const Chain& chain = block.chains[i];
             Point d{};
             for (int a = 0; a < axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
             deltas.push_back(d);
             items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
-            keys.push_back(key_of(1, d, nullptr));
+            keys.push_back(mine ? mine->keys[kk++] : key_of(1, d, nullptr));
             ref = chain.start;
             for (const Segment& s : segs[i]) {
-                cs.push_back(canonical(p, s, axes));
+                if (mine) {
+                    cs.push_back(mine->canon[kc++]);
+                    keys.push_back(mine->keys[kk++]);
+                } else {
+                    cs.push_back(canonical(p, s, axes));
+                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                }
                 items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
-                keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
                 ++h.nsegments;
                 h.nsteps += item_steps(s, p, axes);
                 for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
             }
             items.push_back(kEndTag);
             keys.push_back(2);
+            kk += mine ? 1 : 0;
         }
+    }
+    if (made && !mine) {
+        made->canon.assign(cs.begin() + static_cast<std::ptrdiff_t>(first_seg), cs.end());
+        made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
     }
     h.grid = start_grid(block, segs);
     auto same = [&](std::size_t a, std::size_t b) {

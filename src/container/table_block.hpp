@@ -25,9 +25,19 @@ struct TableEffort {
 
 /// Payload of a table block for `block` cut into `segs` under `p` (the
 /// segments write_chain_payload takes); with `window`, matches may copy
-/// the window's items (a block flagged kFlagWindow).
+/// the window's items (a block flagged kFlagWindow). `own`: the keys of
+/// `segs`' items from an earlier coding (`made` of it, or window_keys() of
+/// the block's contribution), used instead of computing them; `made`, when
+/// not null and `own` is not used: receives them.
 std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
-                              const TableEffort& effort = {}, const WindowView* window = nullptr);
+                              const TableEffort& effort = {}, const WindowView* window = nullptr,
+                              const TableItemKeys* own = nullptr, TableItemKeys* made = nullptr);
+
+/// The table coder's keys of `b`'s items under `p` and `axes` (the frame's),
+/// made on the first call and kept with `b` for the later table blocks whose
+/// window holds it: taken from `made` when it holds as many (the keys a
+/// write_table_block of the same items filled), else computed. Thread-safe.
+const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, TableItemKeys* made = nullptr);
 
 /// Parses a table-block payload into `out` (chains and layout, when
 /// `expand`) and adds its counts to `counts`. Errors: Errc::corrupt and

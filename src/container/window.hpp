@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "stepzip/container.hpp"
@@ -26,6 +27,14 @@ struct SegmentItems {
     bool arcs = false;
 };
 
+/// The table coder's form of a block's segment items (table_block.cpp):
+/// per history entry (start, segments, end of each chain) its match key,
+/// and the segments in canonical form.
+struct TableItemKeys {
+    std::vector<Segment> canon;
+    std::vector<std::uint64_t> keys;
+};
+
 /// One earlier block as the window holds it.
 struct WindowBlock {
     std::uint64_t weight = 0;           ///< steps + chains
@@ -34,6 +43,11 @@ struct WindowBlock {
     std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
     std::uint64_t first_symbol = 0;     ///< decoder: frame position of its first symbol
     unsigned first_type = 0;            ///< encoder: the block type its first pass chose
+    /// Encoder: `items` as the table coder keys them, made by the first
+    /// table block that reads this block from its window (under the frame's
+    /// profile and axes) and kept for the later ones.
+    mutable std::once_flag table_keys_once;
+    mutable TableItemKeys table_keys;
 };
 
 /// The blocks inside the window, oldest first.
