@@ -365,8 +365,11 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
 // The trial of `s.profile` on this very block, if the ranking made one.
 const FirstBlockTrial* trial_of(const BlockJob& job, const EncoderSettings& s) {
     const FirstBlockTrial* t = s.first_trial.get();
+    // The whole block must match, its layout and flags too: a block cut for
+    // the size of its layout can have the first block's (empty) chains.
     if (!t || t->profile != s.profile || job.first_chain != 0 || t->block.axes != job.block.axes ||
-        t->block.chains.size() != job.block.chains.size())
+        t->block.chains.size() != job.block.chains.size() || t->block.layout != job.block.layout ||
+        t->block.continues != job.block.continues || t->block.open != job.block.open)
         return nullptr;
     for (std::size_t i = 0; i < t->block.chains.size(); ++i)
         if (t->block.chains[i].steps != job.block.chains[i].steps ||
