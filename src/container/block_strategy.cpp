@@ -368,13 +368,9 @@ const FirstBlockTrial* trial_of(const BlockJob& job, const EncoderSettings& s) {
     // The whole block must match, its layout and flags too: a block cut for
     // the size of its layout can have the first block's (empty) chains.
     if (!t || t->profile != s.profile || job.first_chain != 0 || t->block.axes != job.block.axes ||
-        t->block.chains.size() != job.block.chains.size() || t->block.layout != job.block.layout ||
-        t->block.continues != job.block.continues || t->block.open != job.block.open)
+        t->block.continues != job.block.continues || t->block.open != job.block.open ||
+        t->block.layout != job.block.layout || t->block.chains != job.block.chains)
         return nullptr;
-    for (std::size_t i = 0; i < t->block.chains.size(); ++i)
-        if (t->block.chains[i].steps != job.block.chains[i].steps ||
-            t->block.chains[i].start != job.block.chains[i].start)
-            return nullptr;
     return t;
 }
 
