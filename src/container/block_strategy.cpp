@@ -401,6 +401,7 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
 TableEffort table_effort(int level) {
     TableEffort e;
     e.recent_search = level <= 1 ? 16 : level <= 3 ? 64 : level <= 6 ? 256 : 1024;
+    e.minors = MinorCoding::smaller;
     return e;
 }
 
@@ -532,9 +533,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
             TableItemKeys keys;
+            unsigned record_type = kTable;
             const std::string table = write_table_block(block, s.profile, segs, table_effort(s.level), nullptr,
-                                                        nullptr, s.window_log != 0 ? &keys : nullptr);
-            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table))) {
+                                                        nullptr, s.window_log != 0 ? &keys : nullptr, &record_type);
+            if (table.size() <= kMaxBlockPayload &&
+                consider(kTable, make_stored_record(record_type, job.flags, table))) {
                 job.cut = segs;
                 job.table_keys = std::move(keys);
             }
@@ -547,8 +550,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 job.error = std::move(r).error();
                 return;
             }
-            const std::string table = write_table_block(block, s.profile, arcs, table_effort(s.level));
-            if (table.size() <= kMaxBlockPayload && consider(kTable, make_stored_record(kTable, job.flags, table))) {
+            unsigned record_type = kTable;
+            const std::string table =
+                write_table_block(block, s.profile, arcs, table_effort(s.level), nullptr, nullptr, nullptr, &record_type);
+            if (table.size() <= kMaxBlockPayload &&
+                consider(kTable, make_stored_record(record_type, job.flags, table))) {
                 job.cut = std::move(arcs);
                 job.table_keys = {};
             }
@@ -769,10 +775,11 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
         // from the first pass, are kept with it for the later blocks.
         const TableItemKeys* own =
             job.contribution ? &window_keys(*job.contribution, s.profile, job.block.axes, &job.table_keys) : nullptr;
+        unsigned record_type = kTable;
         const std::string table =
-            write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window, own);
+            write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window, own, nullptr, &record_type);
         if (table.size() > kMaxBlockPayload) return;
-        std::string rec = make_stored_record(kTable, job.flags | kFlagWindow, table);
+        std::string rec = make_stored_record(record_type, job.flags | kFlagWindow, table);
         if (rec.size() < job.record.size()) job.record = std::move(rec);
         return;
     }

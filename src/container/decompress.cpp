@@ -273,12 +273,17 @@ private:
                 Result<void> r;
                 // Block type 6 decodes as the model its first byte names.
                 const bool mixed = b.type == kMixedModel;
-                // Block type 7 decodes as the subtype its first byte names.
-                if (b.type == kExtended && (payload.empty() || static_cast<unsigned char>(payload[0]) != kTimedSubtype))
+                // Block type 7 decodes as the subtype its first byte names:
+                // a timed block, or a table block (read_table_block checks the rest).
+                const bool ext_table = b.type == kExtended && !payload.empty() &&
+                                       static_cast<unsigned char>(payload[0]) == kTableSubtype;
+                if (b.type == kExtended && !ext_table &&
+                    (payload.empty() || static_cast<unsigned char>(payload[0]) != kTimedSubtype))
                     return make_error(Errc::corrupt, what + " byte 0: unknown subtype of an extended block");
-                if (b.type == kExtended && hdr_.format != InputFormat::timed)
+                if (b.type == kExtended && !ext_table && hdr_.format != InputFormat::timed)
                     return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");
-                const unsigned model = !mixed ? b.type
+                const unsigned model = ext_table ? kTable
+                                       : !mixed ? b.type
                                        : payload.empty() ? kEnd
                                        : mixed_model_of(static_cast<unsigned char>(payload[0]));
                 if (model == kEnd)
@@ -296,7 +301,7 @@ private:
                                          window_.limit() ? &contribution->items : nullptr);
                 } else if (model == kTable) {
                     r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
-                                         window_.limit() ? &contribution->items : nullptr);
+                                         window_.limit() ? &contribution->items : nullptr, b.type);
                 } else {
                     on_history = w && steps_;
                     r = read_step_model(payload, hdr_.axes, expand_, block, counts, what, w, hdr_.version,

@@ -39,8 +39,8 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
     Result<void> r =
         rec.type == kChains
             ? read_chain_payload(dec, s.profile, s.axes, true, job.decoded, job.counts, where)
-        : rec.type == kTable
-            ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
+        : rec.type == kTable || (rec.type == kExtended && job.type == kTable)
+            ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr, rec.type)
         : rec.type == kExtended
             ? read_timed_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
         : job.type == kSegmentModel

@@ -107,6 +107,18 @@ struct EncSide {
     std::array<std::vector<std::uint32_t>, kTables> count;
     BitWriter bits;
     bool failed = false;
+    // The minor totals' symbols and extra bits in the other coding (raw
+    // against predicted), by table context, for MinorCoding::smaller.
+    std::array<std::array<std::uint32_t, kBuckets>, 12> alt_minor{};
+    std::uint64_t alt_minor_bits = 0, minor_bits = 0;
+    void note_minor(int ctx, std::uint64_t alt, std::uint64_t coded) {
+        int nb = 0;
+        std::uint64_t extra;
+        ++alt_minor[static_cast<std::size_t>(ctx)][bucket_of(alt, nb, extra)];
+        alt_minor_bits += static_cast<std::uint64_t>(nb);
+        bucket_of(coded, nb, extra);
+        minor_bits += static_cast<std::uint64_t>(nb);
+    }
     EncSide() {
         for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t, true), 0);
     }
@@ -261,6 +273,9 @@ public:
     const char* error_ = nullptr;
     // Arc blocks: the method of the arcs the block codes (-1: none yet).
     int arc_method_ = -1;
+    // Minor totals coded as they are (block type 7 subtype 4), not as the
+    // residual of the previous segment's slope.
+    bool raw_minors_ = false;
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
@@ -431,11 +446,19 @@ public:
         for (int i = 0; i < ax(); ++i) {
             std::int64_t v = l;
             if (i != lead) {
-                const std::int64_t pred = predict_minor(l, prev_s_[static_cast<std::size_t>(j)], prev_l_);
-                const std::uint64_t z =
-                    code_uint(kTMinor + bl, Io::kDecode ? 0 : zig(std::llabs(want->delta[i]) - pred));
+                const std::int64_t pred =
+                    raw_minors_ ? 0 : predict_minor(l, prev_s_[static_cast<std::size_t>(j)], prev_l_);
+                std::uint64_t want_z = 0;
+                if constexpr (!Io::kDecode) {
+                    const std::int64_t s = std::llabs(want->delta[i]);
+                    const std::uint64_t predicted = zig(s - predict_minor(l, prev_s_[static_cast<std::size_t>(j)], prev_l_));
+                    const auto raw = static_cast<std::uint64_t>(s);
+                    want_z = raw_minors_ ? raw : predicted;
+                    io_.note_minor(bl, raw_minors_ ? predicted : raw, want_z);
+                }
+                const std::uint64_t z = code_uint(kTMinor + bl, want_z);
                 if (io_.failed || z > (std::uint64_t{1} << 32)) return fail("bad minor total");
-                v = pred + unzig(z);
+                v = raw_minors_ ? static_cast<std::int64_t>(z) : pred + unzig(z);
                 if (!minor_in_range(v, l, i, lead)) return fail("minor total out of range");
                 ++j;
             }
@@ -681,6 +704,20 @@ void put_table(std::string& out, const std::vector<std::uint32_t>& count, Encode
     enc.precision = best_p;
 }
 
+// Bytes a table of `count` costs: its header and the symbols' entropy.
+double table_bytes(const std::vector<std::uint32_t>& count) {
+    std::uint64_t total = 0;
+    for (auto c : count) total += c;
+    if (total == 0) return 0;
+    std::string head;
+    EncodeTable enc;
+    put_table(head, count, enc);
+    double bits = 0;
+    for (auto c : count)
+        if (c != 0) bits += static_cast<double>(c) * std::log2(static_cast<double>(total) / c);
+    return static_cast<double>(head.size()) + bits / 8;
+}
+
 // Reads one table header into `d` (the decode table). Errors name the byte.
 bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
     std::uint64_t used;
@@ -758,7 +795,7 @@ const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, Tabl
 
 std::string write_table_block(const Block& block, Profile p, const std::vector<std::vector<Segment>>& segs,
                               const TableEffort& effort, const WindowView* window, const TableItemKeys* own,
-                              TableItemKeys* made) {
+                              TableItemKeys* made, unsigned* type) {
     const int axes = block.axes;
     BlockHead h;
     h.nchains = block.chains.size();
@@ -845,8 +882,17 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         return l;
     };
 
-    EncSide io;
-    TableCoder<EncSide> coder(io, p, axes);
+    // One coding of the items, with minor totals raw or predicted.
+    struct Pass {
+        EncSide io;
+        TableCoder<EncSide> coder;
+        Pass(Profile p, int axes) : coder(io, p, axes) {}
+    };
+    auto run = [&](bool raw_minors) {
+    auto pass = std::make_unique<Pass>(p, axes);
+    EncSide& io = pass->io;
+    TableCoder<EncSide>& coder = pass->coder;
+    coder.raw_minors_ = raw_minors;
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (window) coder.prime(*window, cs.data());  // the window's segments come first in cs
     // Shape keys by id, for the encoder's searches.
@@ -963,8 +1009,31 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         }
         ++i;
     }
+    return pass;
+    };
+    const bool try_raw = effort.minors != MinorCoding::predicted;
+    auto pass = run(try_raw);
+    if (effort.minors == MinorCoding::smaller) {
+        // The other coding's minor tables and extra bits, estimated from the
+        // symbols this pass saw, against this pass's.
+        const EncSide& io = pass->io;
+        double coded = static_cast<double>(io.minor_bits) / 8, other = static_cast<double>(io.alt_minor_bits) / 8;
+        for (int c = 0; c < 12; ++c) {
+            coded += table_bytes(io.count[static_cast<std::size_t>(kTMinor + c)]);
+            const auto& a = io.alt_minor[static_cast<std::size_t>(c)];
+            other += table_bytes(std::vector<std::uint32_t>(a.begin(), a.end()));
+        }
+        if (other < coded) pass = run(!try_raw);
+    }
+    EncSide& io = pass->io;
+    TableCoder<EncSide>& coder = pass->coder;
 
     std::string out;
+    if (coder.raw_minors_) {
+        put_u8(out, kTableSubtype);
+        put_u8(out, kTableRawMinors);
+    }
+    if (type) *type = coder.raw_minors_ ? kExtended : kTable;
     put_varint(out, h.nchains);
     put_varint(out, h.nsegments);
     put_varint(out, h.nsteps);
@@ -1002,17 +1071,20 @@ namespace {
 // 0 for any count.
 template <int kAxes>
 Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool expand, Block& out, BlockCounts& counts,
-                        const std::string& where, const WindowView* window, SegmentItems* items) {
+                        const std::string& where, const WindowView* window, SegmentItems* items, bool raw_minors) {
     const int axes = kAxes ? kAxes : axes_in;
     Cursor cur(payload);
     auto error = [&](Errc code, std::size_t at, const std::string& what) {
         return make_error(code, where + " byte " + std::to_string(at) + ": " + what);
     };
+    // Block type 7: the subtype and its flags come first.
+    std::uint8_t skip;
+    if (raw_minors && (!cur.u8(skip) || !cur.u8(skip))) return error(Errc::corrupt, cur.pos(), "bad payload header");
     BlockHead h;
     if (!cur.varint(h.nchains) || !cur.varint(h.nsegments) || !cur.varint(h.nsteps))
         return error(Errc::corrupt, cur.pos(), "bad payload header");
     if (h.nchains > kMaxBlockChains || h.nsegments > kMaxBlockSteps || h.nsteps > kMaxBlockSteps)
-        return error(Errc::limit, 0, "payload declares more chains, segments or steps than the limits");
+        return error(Errc::limit, raw_minors ? 2 : 0, "payload declares more chains, segments or steps than the limits");
     if (!cur.varint(h.grid) || h.grid == 0 || h.grid > (std::uint64_t{1} << 62))
         return error(Errc::corrupt, cur.pos(), "bad start grid");
     const std::size_t layout_at = cur.pos();
@@ -1049,6 +1121,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     TableCoder<DecSide, kAxes> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
+    coder.raw_minors_ = raw_minors;
     start_output(out, expand, axes, std::move(*layout));
     {
         // Room for the declared items, within what the payload's size can
@@ -1228,9 +1301,18 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
 
 Result<void> read_table_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
                               BlockCounts& counts, const std::string& where, const WindowView* window,
-                              SegmentItems* items) {
-    if (axes == 2) return read_table<2>(payload, p, axes, expand, out, counts, where, window, items);
-    return read_table<0>(payload, p, axes, expand, out, counts, where, window, items);
+                              SegmentItems* items, unsigned type) {
+    bool raw = false;
+    if (type == kExtended) {
+        // docs/FORMAT.md 1.10.2: the subtype, then its flags.
+        if (payload.empty() || static_cast<unsigned char>(payload[0]) != kTableSubtype)
+            return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
+        if (payload.size() < 2 || static_cast<unsigned char>(payload[1]) != kTableRawMinors)
+            return make_error(Errc::corrupt, where + " byte 1: bad table flags");
+        raw = true;
+    }
+    if (axes == 2) return read_table<2>(payload, p, axes, expand, out, counts, where, window, items, raw);
+    return read_table<0>(payload, p, axes, expand, out, counts, where, window, items, raw);
 }
 
 }  // namespace stepzip::stz

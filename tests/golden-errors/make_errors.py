@@ -267,6 +267,17 @@ files.update({
     'v2_arc_flag': ('corrupt', whereT % set_atA,
                     arc_block(payloadA[:set_atA] + put_varint(table_setA & ~(1 << 53)) + payloadA[method_atA:])),
 })
+# Block type 7 subtype 4, the table block with unpredicted minor totals
+# (docs/FORMAT.md 1.10.2), from tests/golden/v2/table_raw.fc.stz: its first
+# block is one (subtype 4, flags 1).
+raw = open(os.path.join(here, '..', 'golden', 'v2', 'table_raw.fc.stz'), 'rb').read()
+assert raw[8] & 7 == 7, 'v2/table_raw.fc.stz should start with an extended block'
+r_csize, r_payload = varint_at(raw, 9)
+assert raw[r_payload] == 4 and raw[r_payload + 1] == 1
+files.update({
+    # Flags 3: bit 1 names nothing (1, unpredicted minor totals, is the only value).
+    'v2_table_raw_flags': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(raw, r_payload + 1, 3))),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')
