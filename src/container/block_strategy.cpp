@@ -51,14 +51,13 @@ using Cut = std::vector<std::vector<Segment>>;
 // kSmallBlockSteps or more that a table block codes is also coded by the
 // segment model when its sample (kModelSampleSteps of whole chains spread
 // over the block, their segments as cut) codes smaller by the segment model
-// than by a table block; the segment model is kept when at least
-// 1/kModelMargin smaller than the table block. It decodes about 2.5 times
-// slower than a table block, so it is kept only where it saves that much:
-// on large glyph contours (3.7 MB, fonts not in corpora/) it saves 5-10 %
-// per block, on plots it does not win (docs/benchmarks.md, "The default
-// level against xz -9e").
+// than by a table block; the segment model is kept when smaller than the
+// table block. It decodes about 2.5 times slower than a table block; a
+// margin of 1/32 (kept only when that much smaller) made -L 3 2.5-2.9 %
+// larger on URW glyph contours once table blocks coded minor totals
+// unpredicted, so the default level takes the smaller block
+// (docs/benchmarks.md, "The default level against xz -9e").
 constexpr std::uint64_t kModelSampleSteps = 1u << 15;
-constexpr std::size_t kModelMargin = 32;
 
 std::uint64_t step_count(const Block& block) {
     std::uint64_t n = 0;
@@ -566,7 +565,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // Nor do the thorough levels code a two-axis block too dense for it
         // (random walks): there the step model wins by 20-25 %.
         // From kFastStepLevel a large block too, where its sample says the
-        // segment model may pay; kept only by a margin (kModelMargin).
+        // segment model may pay; kept when smaller.
         const bool model_fits = block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps;
         const bool large_model = model_fits && !s.thorough && !s.timed && s.level >= kFastStepLevel &&
                                  job.steps >= kSmallBlockSteps && type == kTable &&
@@ -585,7 +584,6 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             }
             std::string rec = model.size() <= kMaxBlockPayload ? make_stored_record(kSegmentModel, job.flags, model)
                                                                : std::string();
-            if (large_model && rec.size() * kModelMargin > best.size() * (kModelMargin - 1)) rec.clear();
             if (consider(kSegmentModel, std::move(rec))) job.cut = cuts[which];
             if (s.timed) timed_choice(job, s, cuts, type, best);
         }
