@@ -18,6 +18,7 @@
 #include "memory_io.hpp"
 #include "table_block.hpp"
 #include "timed_block.hpp"
+#include "timed_tick.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"
 
@@ -274,7 +275,8 @@ private:
                 // Block type 6 decodes as the model its first byte names.
                 const bool mixed = b.type == kMixedModel;
                 // Block type 7 decodes as the subtype its first byte names.
-                if (b.type == kExtended && (payload.empty() || static_cast<unsigned char>(payload[0]) != kTimedSubtype))
+                if (b.type == kExtended && (payload.empty() || (static_cast<unsigned char>(payload[0]) != kTimedSubtype &&
+                                                                static_cast<unsigned char>(payload[0]) != kTickSubtype)))
                     return make_error(Errc::corrupt, what + " byte 0: unknown subtype of an extended block");
                 if (b.type == kExtended && hdr_.format != InputFormat::timed)
                     return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");
@@ -292,7 +294,7 @@ private:
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed, mixed);
                 } else if (model == kExtended) {
-                    r = read_timed_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
+                    r = read_extended_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                          window_.limit() ? &contribution->items : nullptr);
                 } else if (model == kTable) {
                     r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
