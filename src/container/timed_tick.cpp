@@ -208,27 +208,45 @@ template <class Io>
 class TickCoder {
 public:
     TickCoder(Io& io, int axes) : io_(io), minor_(axes - 1) {
-        for (auto& v : axis_p_) v.resize(2 * Follower::kContexts);
+        for (auto& v : axis_p_) v.resize(kContextsPerAxis);
     }
 
     /// A chain's start: every follower forgets.
     void start_chain() {
         for (auto& f : axis_) f.reset();
+        for (auto& f : bres_) f.reset();
         sign_.fill(1);
         since_.fill(0);
+        gap_.fill(0);
+        leader_ = -1;
     }
 
     /// One tick: `mask` bit a set when axis a + 1 steps, `neg` bit a when
     /// it steps backward (encoder: given; decoder: filled in).
     void tick(unsigned& mask, unsigned& neg) {
+        // The axes in order of their step rate, fastest first: the leader
+        // (a controller's Bresenham major axis) is coded first, and the
+        // others on the ticks where it steps follow their own line.
+        std::array<int, kMinor> order{};
+        for (int a = 0; a < minor_; ++a) order[static_cast<std::size_t>(a)] = a;
+        std::stable_sort(order.begin(), order.begin() + minor_, [&](int x, int y) { return key(x) < key(y); });
+        if (order[0] != leader_) {
+            leader_ = order[0];
+            for (auto& f : bres_) f.reset();
+        }
         unsigned m = 0, n = 0;
-        for (int a = 0; a < minor_; ++a) {
+        int lead_step = 0;
+        for (int i = 0; i < minor_; ++i) {
+            const int a = order[static_cast<std::size_t>(i)];
             const auto ua = static_cast<std::size_t>(a);
             Follower& f = axis_[ua];
             const int fa = f.admits();
-            const std::size_t ctx = static_cast<std::size_t>(f.context(fa) * 2 + (m != 0));
+            const int ba = i > 0 && lead_step ? bres_[ua].admits() : 0;
+            const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
             const int step = io_.bit(axis_p_[ua][ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
+            if (ba != 0) bres_[ua].push(step, ba);
+            if (i == 0) lead_step = step;
             if (step) {
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
                 const int flip = io_.bit(dir_p_[ua][static_cast<std::size_t>(sb)],
@@ -236,6 +254,12 @@ public:
                 if (flip) sign_[ua] = -sign_[ua];
                 m |= 1u << a;
                 if (sign_[ua] < 0) n |= 1u << a;
+            }
+        }
+        for (int a = 0; a < minor_; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            if ((m >> a) & 1u) {
+                gap_[ua] = since_[ua] + 1;
                 since_[ua] = 0;
             } else {
                 ++since_[ua];
@@ -246,13 +270,23 @@ public:
     }
 
 private:
+    static constexpr std::size_t kContextsPerAxis = std::size_t{8} * Follower::kContexts;
+    // Ticks per step of axis a: its last interval, or the time it has
+    // rested when longer; unknown before its second step.
+    std::int64_t key(int a) const {
+        const auto ua = static_cast<std::size_t>(a);
+        return gap_[ua] == 0 ? INT64_MAX : std::max(gap_[ua], since_[ua]);
+    }
+
     Io& io_;
     int minor_;
-    std::array<Follower, kMinor> axis_;
+    std::array<Follower, kMinor> axis_;  // each axis over every tick
+    std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
+    int leader_ = -1;
     std::array<std::vector<Prob>, kMinor> axis_p_;
     std::array<std::array<Prob, kSinceBuckets>, kMinor> dir_p_{};
     std::array<int, kMinor> sign_{};
-    std::array<std::int64_t, kMinor> since_{};
+    std::array<std::int64_t, kMinor> since_{}, gap_{};
 };
 
 struct ChainModels {
