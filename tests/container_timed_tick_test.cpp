@@ -1,0 +1,259 @@
+// The tick block (docs/FORMAT.md 1.13, block type 7 subtype 2): round trips
+// of blocks on every axis count (chains, empty chains, reversals, layouts,
+// idle stretches), of whole frames cut into many blocks at every tier, what
+// a constant rate costs, and its corrupt cases named by payload byte.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../src/container/block_codec.hpp"
+#include "../src/container/timed_tick.hpp"
+#include "stepzip/container.hpp"
+
+namespace stepzip {
+namespace {
+
+// A timed chain on `axes` axes (axis 0 time): stretches of constant rate
+// per axis, rests, reversals; the rates and lengths vary with the seed.
+Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
+    Chain c;
+    c.axes = axes;
+    c.start = start;
+    std::vector<double> rate(static_cast<std::size_t>(axes)), acc(static_cast<std::size_t>(axes));
+    std::vector<int> dir(static_cast<std::size_t>(axes), 1);
+    while (c.steps.size() < ticks) {
+        // A stretch: every axis a rate in (0, 1] or a rest, maybe a reversal.
+        const std::size_t len = 20 + rng() % 400;
+        for (int a = 1; a < axes; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            rate[ua] = rng() % 4 == 0 ? 0.0 : 1.0 / (1 + rng() % 12) + (rng() % 100) * 1e-4;
+            if (rng() % 5 == 0) dir[ua] = -dir[ua];
+        }
+        for (std::size_t t = 0; t < len && c.steps.size() < ticks; ++t) {
+            int d[kMaxAxes] = {1};
+            for (int a = 1; a < axes; ++a) {
+                const auto ua = static_cast<std::size_t>(a);
+                acc[ua] += rate[ua];
+                if (acc[ua] >= 1) {
+                    acc[ua] -= 1;
+                    d[a] = dir[ua];
+                }
+            }
+            c.steps.push_back(make_step(d, axes));
+        }
+    }
+    return c;
+}
+
+Block round_trip(const Block& in) {
+    const std::string payload = stz::write_tick_block(in);
+    EXPECT_FALSE(payload.empty());
+    EXPECT_EQ(static_cast<unsigned char>(payload[0]), stz::kTickSubtype);
+    Block out;
+    stz::BlockCounts counts;
+    auto r = stz::read_tick_block(payload, in.axes, true, out, counts, "test");
+    EXPECT_TRUE(r.ok()) << r.error().message;
+    std::uint64_t steps = 0;
+    for (const Chain& c : in.chains) steps += c.steps.size();
+    EXPECT_EQ(counts.chains, in.chains.size());
+    EXPECT_EQ(counts.steps, steps);
+    EXPECT_EQ(counts.segments, 0u);
+    return out;
+}
+
+TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
+    std::mt19937 rng(7);
+    for (int axes = 2; axes <= kMaxAxes; ++axes)
+        for (int variant = 0; variant < 3; ++variant) {
+            Block b;
+            b.axes = axes;
+            Point start{};
+            start[0] = 1000 * variant;
+            start[1] = -37;
+            b.chains.push_back(timed_chain(rng, axes, 3000 + 1000 * static_cast<std::size_t>(variant), start));
+            if (variant >= 1) {
+                b.chains.push_back(Chain{axes, b.chains.back().end(), {}});  // an empty chain
+                Point far = b.chains.back().start;
+                far[1] += 123456;
+                b.chains.push_back(timed_chain(rng, axes, 1500, far));
+            }
+            if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
+            const Block out = round_trip(b);
+            EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant;
+            EXPECT_EQ(out.layout, b.layout);
+            EXPECT_EQ(out.axes, axes);
+        }
+}
+
+TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
+    Block empty;
+    empty.axes = 3;
+    EXPECT_TRUE(round_trip(empty).chains.empty());
+    Block idle;
+    idle.axes = 3;
+    idle.chains.push_back(Chain{3, Point{}, std::vector<Step>(50000, make_step2(1, 0))});
+    EXPECT_EQ(round_trip(idle).chains, idle.chains);
+}
+
+TEST(TickBlock, StepThatDoesNotAdvanceTimeIsNotATickBlock) {
+    Block b;
+    b.axes = 3;
+    int d[kMaxAxes] = {0, 1, 0};
+    b.chains.push_back(Chain{3, Point{}, {make_step2(1, 1), make_step(d, 3)}});
+    EXPECT_TRUE(stz::write_tick_block(b).empty());
+}
+
+// A constant rate costs almost nothing: its line admits one letter on
+// nearly every tick.
+TEST(TickBlock, ConstantRateCostsAlmostNothing) {
+    for (double rate : {1.0 / 7, 0.3183, 0.05}) {
+        Block b;
+        b.axes = 3;
+        Chain c{3, Point{}, {}};
+        double acc = 0.5;
+        for (int t = 0; t < 200000; ++t) {
+            acc += rate;
+            int d[kMaxAxes] = {1, 0, 0};
+            if (acc >= 1) {
+                acc -= 1;
+                d[1] = 1;
+            }
+            c.steps.push_back(make_step(d, 3));
+        }
+        b.chains.push_back(std::move(c));
+        const std::string payload = stz::write_tick_block(b);
+        // 200000 ticks, thousands of steps: under a bit per 1000 ticks.
+        EXPECT_LT(payload.size(), 150u) << "rate " << rate;
+        EXPECT_EQ(round_trip(b).chains, b.chains);
+    }
+}
+
+// A controller-like log: the leading axis at a rate that ramps every
+// `seg` ticks, the other by Bresenham on its steps, DIR set ahead.
+std::string controller_log(std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::string log;
+    for (int move = 0; move < 6; ++move) {
+        const long major = 300 + static_cast<long>(rng() % 900), minor = static_cast<long>(rng() % 300);
+        const unsigned dirs = (rng() % 2 ? 2u : 0u) | (rng() % 2 ? 8u : 0u);
+        log.append(5, static_cast<char>(dirs));
+        double rate = 0.01, acc = 0;
+        long done = 0, err = major / 2;
+        while (done < major) {
+            rate = std::min(0.3, rate + 0.004);
+            for (int t = 0; t < 120 && done < major; ++t) {
+                acc += rate;
+                unsigned tick = dirs;
+                if (acc >= 1) {
+                    acc -= 1;
+                    ++done;
+                    tick |= 1u;
+                    err -= minor;
+                    if (err < 0) {
+                        err += major;
+                        tick |= 4u;
+                    }
+                }
+                log.push_back(static_cast<char>(tick));
+            }
+        }
+    }
+    const auto first = log.find_first_of(std::string("\x01\x03\x04\x06\x05\x07\x0c\x0d\x0e\x0f\x09\x0b", 12));
+    return log.substr(first);
+}
+
+std::size_t tick_blocks(const std::string& frame) {
+    std::size_t n = 0, i = 8;  // after the frame header
+    while (i < frame.size() && frame[i] != 0) {
+        const unsigned type = static_cast<unsigned char>(frame[i]) & 7u;
+        std::size_t j = i + 1, c = 0, shift = 0;
+        for (;; shift += 7) {
+            const auto b = static_cast<unsigned char>(frame[j++]);
+            c |= static_cast<std::size_t>(b & 0x7F) << shift;
+            if (b < 0x80) break;
+        }
+        if (type == stz::kChains || type == stz::kRaw)  // a decoded size follows
+            while (static_cast<unsigned char>(frame[j++]) >= 0x80) {
+            }
+        if (type == stz::kExtended && static_cast<unsigned char>(frame[j]) == stz::kTickSubtype) ++n;
+        i = j + c + 4;
+    }
+    return n;
+}
+
+TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
+    for (std::uint32_t seed : {1u, 2u}) {
+        const std::string log = controller_log(seed);
+        ASSERT_GT(log.size(), 20000u);
+        for (int level : {1, 3, 10, 19}) {
+            CompressOptions opt;
+            opt.format = InputFormat::timed;
+            opt.level = level;
+            opt.allow_raw = false;
+            opt.block_steps = 1u << 13;  // chains continue across blocks
+            auto z = compress(log, opt);
+            ASSERT_TRUE(z.ok()) << z.error().message;
+            EXPECT_GT(tick_blocks(*z), 1u) << "seed " << seed << " level " << level;
+            auto back = decompress(*z);
+            ASSERT_TRUE(back.ok()) << back.error().message;
+            EXPECT_EQ(*back, log) << "seed " << seed << " level " << level;
+        }
+    }
+}
+
+TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
+    std::mt19937 rng(3);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 4000, Point{}));
+    const std::string payload = stz::write_tick_block(b);
+    Block out;
+    stz::BlockCounts counts;
+    std::string bad = payload;
+    bad[1] = 1;
+    auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
+    ASSERT_FALSE(coding.ok());
+    EXPECT_EQ(coding.error().code, Errc::corrupt);
+    EXPECT_EQ(coding.error().message, "P byte 1: unknown coding of a tick block");
+    auto longer = stz::read_tick_block(payload + std::string(3, '\0'), 3, true, out, counts, "P");
+    ASSERT_FALSE(longer.ok());
+    EXPECT_EQ(longer.error().code, Errc::corrupt);
+    for (std::size_t cut : {std::size_t{1}, std::size_t{3}, payload.size() / 2, payload.size() - 1}) {
+        auto r = stz::read_tick_block(std::string_view(payload).substr(0, cut), 3, true, out, counts, "P");
+        ASSERT_FALSE(r.ok()) << "cut at " << cut;
+        EXPECT_TRUE(r.error().code == Errc::corrupt) << r.error().message;
+        EXPECT_NE(r.error().message.find("P byte "), std::string::npos) << r.error().message;
+    }
+}
+
+TEST(TickBlock, EveryPayloadByteFlipDecodesToSomethingOrIsRejected) {
+    std::mt19937 rng(5);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 1500, Point{}));
+    const std::string payload = stz::write_tick_block(b);
+    int rejected = 0;
+    for (std::size_t k = 0; k < payload.size(); ++k)
+        for (int bit = 0; bit < 8; bit += 3) {
+            std::string bad = payload;
+            bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
+            Block out;
+            stz::BlockCounts counts;
+            auto r = stz::read_tick_block(bad, 3, true, out, counts, "P");
+            if (!r.ok()) {
+                EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
+                ++rejected;
+            } else {
+                for (const Chain& c : out.chains)
+                    for (Step s : c.steps) EXPECT_EQ(step_axis(s, 0), 1);  // every decoded tick advances time
+            }
+        }
+    EXPECT_GT(rejected, 0);
+}
+
+}  // namespace
+}  // namespace stepzip
