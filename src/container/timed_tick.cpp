@@ -91,7 +91,8 @@ private:
 /// straight segment ending at its last letter (docs/FORMAT.md "Tick block":
 /// the follower). The context of the next letter: which letters the segment
 /// admits, its length, the current run against the last run of the same
-/// letter and the trend of the runs, and the time since the segment last
+/// letter and the trend of the runs, a 1 now against the interval between
+/// 1s extrapolated from the last three, and the time since the segment last
 /// broke against the length of the segment before.
 class Follower {
 public:
@@ -315,7 +316,10 @@ std::string write_tick_block(const Block& block) {
     ChainModels cm;
     Point ref{};
     for (const Chain& chain : block.chains) {
-        for (int a = 0; a < axes; ++a) code_sint(io, cm.start, chain.start[a] - ref[a]);
+        for (int a = 0; a < axes; ++a)  // modulo 2^64, as the decoder adds it back
+            code_sint(io, cm.start,
+                      static_cast<std::int64_t>(static_cast<std::uint64_t>(chain.start[a]) -
+                                                static_cast<std::uint64_t>(ref[a])));
         code_uint(io, cm.length, chain.steps.size());
         coder.start_chain();
         for (const Step s : chain.steps) {
