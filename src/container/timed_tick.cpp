@@ -45,38 +45,47 @@ public:
         p_ = q_ = 0;
     }
     std::int64_t length() const { return p_ + q_; }
-    bool admits(int letter) const {
+    bool admits(int letter) const { return admits_run(letter, 1); }
+    /// Whether k >= 1 letters `letter` may follow: as admits() for the last
+    /// of them (a bound moves only by the tangent to the run's last
+    /// position, the farthest from the opposite hull).
+    bool admits_run(int letter, std::int64_t k) const {
         std::int64_t n, d;
-        const dss::Pt c{p_, q_};
         if (letter == 0) {
-            if (!lo_set_ || !dss::min_slope_to<std::int64_t>(ones_, c, n, d)) return true;
+            if (!lo_set_ || !dss::min_slope_to<std::int64_t>(ones_, dss::Pt{p_ + k - 1, q_}, n, d)) return true;
             if (hi_set_ && !dss::less<std::int64_t>(n, d, hi_.n, hi_.d)) return true;  // hi unchanged
             return dss::less<std::int64_t>(lo_.n, lo_.d, n, d);
         }
-        if (!hi_set_ || !dss::max_slope_to<std::int64_t>(zeros_, c, n, d)) return true;
+        if (!hi_set_ || !dss::max_slope_to<std::int64_t>(zeros_, dss::Pt{p_, q_ + k - 1}, n, d)) return true;
         if (lo_set_ && !dss::less<std::int64_t>(lo_.n, lo_.d, n, d)) return true;  // lo unchanged
         return dss::less<std::int64_t>(n, d, hi_.n, hi_.d);
     }
     /// Appends a letter that admits() allowed.
-    void read(int letter) {
+    void read(int letter) { read_run(letter, 1); }
+    /// Appends k >= 1 letters `letter` that admits_run() allowed, with the
+    /// state k calls of read() leave: a run's inner positions are never hull
+    /// vertices and never give a bound.
+    void read_run(int letter, std::int64_t k) {
         std::int64_t n, d;
-        const dss::Pt c{p_, q_};
         if (letter == 0) {
-            if (dss::min_slope_to<std::int64_t>(ones_, c, n, d) &&
+            const dss::Pt last{p_ + k - 1, q_};
+            if (dss::min_slope_to<std::int64_t>(ones_, last, n, d) &&
                 (!hi_set_ || dss::less<std::int64_t>(n, d, hi_.n, hi_.d))) {
                 hi_ = {n, d};
                 hi_set_ = true;
             }
-            dss::push_lower<std::int64_t>(zeros_, c);
-            ++p_;
+            dss::push_lower<std::int64_t>(zeros_, dss::Pt{p_, q_});
+            if (k >= 2) dss::push_lower<std::int64_t>(zeros_, last);
+            p_ += k;
         } else {
-            if (dss::max_slope_to<std::int64_t>(zeros_, c, n, d) &&
+            const dss::Pt top{p_, q_ + k - 1};
+            if (dss::max_slope_to<std::int64_t>(zeros_, top, n, d) &&
                 (!lo_set_ || dss::less<std::int64_t>(lo_.n, lo_.d, n, d))) {
                 lo_ = {n, d};
                 lo_set_ = true;
             }
-            dss::push_upper<std::int64_t>(ones_, c);
-            ++q_;
+            dss::push_upper<std::int64_t>(ones_, top);
+            q_ += k;
         }
     }
 
@@ -176,17 +185,37 @@ private:
     // The segment becomes the longest straight suffix of at most kRebuild
     // letters (a word is straight iff its reverse is: it is read backward).
     void rebuild() {
+        // Backward, a run at a time: where a run is not admitted whole, the
+        // longest admitted part of it (admission only shrinks along a run).
         back_.reset();
-        std::size_t i = hist_.size();
-        while (i > 0 && hist_.size() - i < kRebuild) {
+        const std::size_t end = hist_.size();
+        std::size_t i = end;
+        while (i > 0 && end - i < kRebuild) {
             const int letter = hist_[i - 1];
-            if (!back_.admits(letter)) break;
-            back_.read(letter);
-            --i;
+            std::size_t j = i - 1;
+            while (j > 0 && hist_[j - 1] == letter && end - j < kRebuild) --j;
+            const auto k = static_cast<std::int64_t>(i - j);
+            if (back_.admits_run(letter, k)) {
+                back_.read_run(letter, k);
+                i = j;
+                continue;
+            }
+            std::int64_t good = 0, bad = k;
+            while (bad - good > 1) {
+                const std::int64_t mid = (good + bad) / 2;
+                (back_.admits_run(letter, mid) ? good : bad) = mid;
+            }
+            i -= static_cast<std::size_t>(good);
+            break;
         }
         line_.reset();
         start_ = i;
-        for (std::size_t j = i; j < hist_.size(); ++j) line_.read(hist_[j]);
+        for (std::size_t j = i; j < end;) {
+            std::size_t r = j + 1;
+            while (r < end && hist_[r] == hist_[j]) ++r;
+            line_.read_run(hist_[j], static_cast<std::int64_t>(r - j));
+            j = r;
+        }
     }
 
     Line line_, back_;
@@ -229,8 +258,17 @@ public:
         // (a controller's Bresenham major axis) is coded first, and the
         // others on the ticks where it steps follow their own line.
         std::array<int, kMinor> order{};
-        for (int a = 0; a < minor_; ++a) order[static_cast<std::size_t>(a)] = a;
-        std::stable_sort(order.begin(), order.begin() + minor_, [&](int x, int y) { return key(x) < key(y); });
+        std::array<std::int64_t, kMinor> keys{};
+        for (int a = 0; a < minor_; ++a) {  // insertion: stable, at most five axes
+            const std::int64_t k = key(a);
+            int i = a;
+            for (; i > 0 && keys[static_cast<std::size_t>(i - 1)] > k; --i) {
+                keys[static_cast<std::size_t>(i)] = keys[static_cast<std::size_t>(i - 1)];
+                order[static_cast<std::size_t>(i)] = order[static_cast<std::size_t>(i - 1)];
+            }
+            keys[static_cast<std::size_t>(i)] = k;
+            order[static_cast<std::size_t>(i)] = a;
+        }
         if (order[0] != leader_) {
             leader_ = order[0];
             for (auto& f : bres_) f.reset();
