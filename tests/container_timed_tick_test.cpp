@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../src/common/bytes.hpp"
 #include "../src/container/block_codec.hpp"
 #include "../src/container/timed_tick.hpp"
 #include "stepzip/container.hpp"
@@ -49,10 +50,11 @@ Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
     return c;
 }
 
-Block round_trip(const Block& in) {
-    const std::string payload = stz::write_tick_block(in);
+Block round_trip(const Block& in, bool mixed = false) {
+    const std::string payload = stz::write_tick_block(in, mixed);
     EXPECT_FALSE(payload.empty());
     EXPECT_EQ(static_cast<unsigned char>(payload[0]), stz::kTickSubtype);
+    EXPECT_EQ(static_cast<unsigned char>(payload[1]), mixed ? 1u : 0u);  // the coding
     Block out;
     stz::BlockCounts counts;
     auto r = stz::read_tick_block(payload, in.axes, true, out, counts, "test");
@@ -82,10 +84,12 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
                 b.chains.push_back(timed_chain(rng, axes, 1500, far));
             }
             if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
-            const Block out = round_trip(b);
-            EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant;
-            EXPECT_EQ(out.layout, b.layout);
-            EXPECT_EQ(out.axes, axes);
+            for (const bool mixed : {false, true}) {
+                const Block out = round_trip(b, mixed);
+                EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " mixed " << mixed;
+                EXPECT_EQ(out.layout, b.layout);
+                EXPECT_EQ(out.axes, axes);
+            }
         }
 }
 
@@ -93,10 +97,12 @@ TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
     Block empty;
     empty.axes = 3;
     EXPECT_TRUE(round_trip(empty).chains.empty());
+    EXPECT_TRUE(round_trip(empty, true).chains.empty());
     Block idle;
     idle.axes = 3;
     idle.chains.push_back(Chain{3, Point{}, std::vector<Step>(50000, make_step2(1, 0))});
     EXPECT_EQ(round_trip(idle).chains, idle.chains);
+    EXPECT_EQ(round_trip(idle, true).chains, idle.chains);
 }
 
 TEST(TickBlock, StepThatDoesNotAdvanceTimeIsNotATickBlock) {
@@ -166,23 +172,31 @@ std::string controller_log(std::uint32_t seed) {
     return log.substr(first);
 }
 
+// Tick blocks of a one-frame version-2 file: its block records walked
+// with the library's varint reader.
 std::size_t tick_blocks(const std::string& frame) {
-    std::size_t n = 0, i = 8;  // after the frame header
-    while (i < frame.size() && frame[i] != 0) {
-        const unsigned type = static_cast<unsigned char>(frame[i]) & 7u;
-        std::size_t j = i + 1, c = 0, shift = 0;
-        for (;; shift += 7) {
-            const auto b = static_cast<unsigned char>(frame[j++]);
-            c |= static_cast<std::size_t>(b & 0x7F) << shift;
-            if (b < 0x80) break;
-        }
-        if (type == stz::kChains || type == stz::kRaw)  // a decoded size follows
-            while (static_cast<unsigned char>(frame[j++]) >= 0x80) {
-            }
-        if (type == stz::kExtended && static_cast<unsigned char>(frame[j]) == stz::kTickSubtype) ++n;
-        i = j + c + 4;
+    wire::Cursor cur(std::string_view(frame).substr(8));  // after the frame header
+    std::size_t n = 0;
+    unsigned first = 0;
+    std::uint64_t csize = 0, dsize = 0;
+    while (cur.u8(first) && first != 0 && cur.varint(csize)) {
+        const unsigned type = first & 7u;
+        if ((type == stz::kChains || type == stz::kRaw) && !cur.varint(dsize)) break;
+        std::string_view payload;
+        if (!cur.bytes(static_cast<std::size_t>(csize) + 4, payload)) break;  // payload and block checksum
+        if (type == stz::kExtended && static_cast<unsigned char>(payload[0]) == stz::kTickSubtype) ++n;
     }
     return n;
+}
+
+// Mixed predictions (coding 1, the strong levels) learn a controller's
+// patterns that the plain contexts do not see.
+TEST(TickBlock, MixedCodingIsSmallerOnAControllerLog) {
+    std::mt19937 rng(11);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 60000, Point{}));
+    EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
 }
 
 TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
@@ -214,7 +228,7 @@ TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
     Block out;
     stz::BlockCounts counts;
     std::string bad = payload;
-    bad[1] = 1;
+    bad[1] = 2;
     auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
     ASSERT_FALSE(coding.ok());
     EXPECT_EQ(coding.error().code, Errc::corrupt);
@@ -235,23 +249,25 @@ TEST(TickBlock, EveryPayloadByteFlipDecodesToSomethingOrIsRejected) {
     Block b;
     b.axes = 3;
     b.chains.push_back(timed_chain(rng, 3, 1500, Point{}));
-    const std::string payload = stz::write_tick_block(b);
     int rejected = 0;
-    for (std::size_t k = 0; k < payload.size(); ++k)
-        for (int bit = 0; bit < 8; bit += 3) {
-            std::string bad = payload;
-            bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
-            Block out;
-            stz::BlockCounts counts;
-            auto r = stz::read_tick_block(bad, 3, true, out, counts, "P");
-            if (!r.ok()) {
-                EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
-                ++rejected;
-            } else {
-                for (const Chain& c : out.chains)
-                    for (Step s : c.steps) EXPECT_EQ(step_axis(s, 0), 1);  // every decoded tick advances time
+    for (const bool mixed : {false, true}) {
+        const std::string payload = stz::write_tick_block(b, mixed);
+        for (std::size_t k = 0; k < payload.size(); ++k)
+            for (int bit = 0; bit < 8; bit += 3) {
+                std::string bad = payload;
+                bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
+                Block out;
+                stz::BlockCounts counts;
+                auto r = stz::read_tick_block(bad, 3, true, out, counts, "P");
+                if (!r.ok()) {
+                    EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
+                    ++rejected;
+                } else {
+                    for (const Chain& c : out.chains)
+                        for (Step s : c.steps) EXPECT_EQ(step_axis(s, 0), 1);  // every decoded tick advances time
+                }
             }
-        }
+    }
     EXPECT_GT(rejected, 0);
 }
 

@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "modeled_block.hpp"
+#include "mix.hpp"
 #include "range_coder.hpp"
 #include "../common/bytes.hpp"
 #include "../segment/dss.hpp"
@@ -20,8 +22,9 @@ namespace {
 
 namespace dss = stepzip::detail::dss;
 
-/// The only coding of a tick block today (payload byte 1).
-constexpr unsigned kTickPlain = 0;
+/// The codings of a tick block (payload byte 1): adaptive contexts, or
+/// mixed predictions (FORMAT.md 1.11's mixer).
+constexpr unsigned kTickPlain = 0, kTickMixed = 1;
 /// A segment followed is cut back to its longest suffix of at most
 /// kRebuild letters that is straight when it breaks, and when it reaches
 /// kMaxLine letters (the hull arithmetic stays far inside 64 bits).
@@ -116,6 +119,18 @@ public:
         period_ = 0;
         ones_.fill(-1);
         n_ = 0;
+        recent_ = 0;
+    }
+
+    /// The last 64 letters, the latest in bit 0 (mixed coding).
+    std::uint64_t recent() const { return recent_; }
+    /// The current run (its letter, 0 before any, and length) and the last
+    /// complete run of its letter (mixed coding).
+    std::uint64_t run_key() const {
+        const int c = last_ < 0 ? 0 : last_;
+        const auto cap = [](std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 255)); };
+        return (cap(run_) << 17) | (cap(runs_[static_cast<std::size_t>(c)][0]) << 9) |
+               (cap(runs_[static_cast<std::size_t>(c)][1]) << 1) | static_cast<std::uint64_t>(c);
     }
 
     /// Letters the segment admits next: 1 zero only, 2 one only, 3 both.
@@ -155,6 +170,7 @@ public:
             ones_[0] = n_;
         }
         ++n_;
+        recent_ = (recent_ << 1) | static_cast<std::uint64_t>(letter);
         if ((adm >> letter) & 1) {
             line_.read(letter);
             if (line_.length() >= kMaxLine) rebuild();
@@ -227,19 +243,30 @@ private:
     std::int64_t since_break_ = 0, period_ = 0;
     std::array<std::int64_t, 4> ones_{-1, -1, -1, -1};  // events of the last four ones, latest first
     std::int64_t n_ = 0;                                 // events read
+    std::uint64_t recent_ = 0;                           // the last 64 letters, latest in bit 0
 };
 
 constexpr int kMinor = kMaxAxes - 1;  // axes besides time
 constexpr int kSinceBuckets = 16;
+
+/// Every adaptive context of a tick block, in the order of FORMAT.md 1.13
+/// "Slots" (a mixed decision's slot is its context's index here).
+struct TickTables {
+    UIntModel start, length;
+    struct Axis {
+        std::array<Prob, std::size_t{8} * Follower::kContexts> step;
+        std::array<Prob, kSinceBuckets> dir;
+    };
+    std::array<Axis, kMinor> axis;
+};
+static_assert(sizeof(TickTables) % sizeof(Prob) == 0);
 
 /// The tick model of one block, shared by the encoder (EncIo) and the
 /// decoder (DecIo). Not thread-safe.
 template <class Io>
 class TickCoder {
 public:
-    TickCoder(Io& io, int axes) : io_(io), minor_(axes - 1) {
-        for (auto& v : axis_p_) v.resize(kContextsPerAxis);
-    }
+    TickCoder(Io& io, TickTables& t, int axes) : io_(io), t_(t), minor_(axes - 1) {}
 
     /// A chain's start: every follower forgets.
     void start_chain() {
@@ -249,6 +276,7 @@ public:
         since_.fill(0);
         gap_.fill(0);
         leader_ = -1;
+        history_ = 0;
     }
 
     /// One tick: `mask` bit a set when axis a + 1 steps, `neg` bit a when
@@ -282,13 +310,29 @@ public:
             const int fa = f.admits();
             const int ba = i > 0 && lead_step ? bres_[ua].admits() : 0;
             const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
-            const int step = io_.bit(axis_p_[ua][ctx], static_cast<int>((mask >> a) & 1u));
+            if constexpr (kMixedIo<Io>) {
+                const std::uint64_t ax = static_cast<std::uint64_t>(a);
+                io_.field(i == 0 ? 0 : 1);
+                mix_context(io_, 0, ctx_join(ctx_join(ax, 1), f.recent() & 0xFFFFu));
+                mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
+                mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
+                mix_context(io_, 3, ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
+                mix_context(io_, 4, ctx_join(ctx_join(ax, 5), (static_cast<std::uint64_t>(fa) << 2) | static_cast<std::uint64_t>(ba)));
+                mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
+            }
+            const int step = io_.bit(t_.axis[ua].step[ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
             if (ba != 0) bres_[ua].push(step, ba);
             if (i == 0) lead_step = step;
             if (step) {
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
-                const int flip = io_.bit(dir_p_[ua][static_cast<std::size_t>(sb)],
+                if constexpr (kMixedIo<Io>) {
+                    io_.field(2);
+                    for (int k = 0; k < kMixBaseModels; ++k)
+                        mix_context(io_, k, ctx_join(ctx_join(static_cast<std::uint64_t>(a), 16 + static_cast<std::uint64_t>(k)),
+                                                     capped(since_[ua])));
+                }
+                const int flip = io_.bit(t_.axis[ua].dir[static_cast<std::size_t>(sb)],
                                          static_cast<int>(((neg >> a) & 1u) != (sign_[ua] < 0)));
                 if (flip) sign_[ua] = -sign_[ua];
                 m |= 1u << a;
@@ -304,12 +348,13 @@ public:
                 ++since_[ua];
             }
         }
+        history_ = (history_ << minor_) | m;
         mask = m;
         neg = n;
     }
 
 private:
-    static constexpr std::size_t kContextsPerAxis = std::size_t{8} * Follower::kContexts;
+    static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
     // Ticks per step of axis a: its last interval, or the time it has
     // rested when longer; unknown before its second step.
     std::int64_t key(int a) const {
@@ -322,43 +367,30 @@ private:
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
     int leader_ = -1;
-    std::array<std::vector<Prob>, kMinor> axis_p_;
-    std::array<std::array<Prob, kSinceBuckets>, kMinor> dir_p_{};
+    TickTables& t_;
+    std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
     std::array<int, kMinor> sign_{};
     std::array<std::int64_t, kMinor> since_{}, gap_{};
 };
 
-struct ChainModels {
-    UIntModel start, length;
-};
 
 }  // namespace
 
-std::string write_tick_block(const Block& block) {
+namespace {
+
+// The chains of `block` (every step advancing time) coded through `io`.
+template <class Io>
+void write_ticks(Io& io, TickTables& t, const Block& block) {
     const int axes = block.axes;
-    if (axes < 2 || axes > kMaxAxes) return {};
-    std::uint64_t nsteps = 0;
-    for (const Chain& chain : block.chains) {
-        for (const Step s : chain.steps)
-            if (step_axis(s, 0) != 1) return {};
-        nsteps += chain.steps.size();
-    }
-    std::string out;
-    put_u8(out, kTickSubtype);
-    put_u8(out, kTickPlain);
-    put_varint(out, block.chains.size());
-    put_varint(out, nsteps);
-    put_layout(out, block.layout);
-    EncIo io;
-    TickCoder<EncIo> coder(io, axes);
-    ChainModels cm;
+    TickCoder<Io> coder(io, t, axes);
     Point ref{};
     for (const Chain& chain : block.chains) {
+        io.field(3);
         for (int a = 0; a < axes; ++a)  // modulo 2^64, as the decoder adds it back
-            code_sint(io, cm.start,
+            code_sint(io, t.start,
                       static_cast<std::int64_t>(static_cast<std::uint64_t>(chain.start[a]) -
                                                 static_cast<std::uint64_t>(ref[a])));
-        code_uint(io, cm.length, chain.steps.size());
+        code_uint(io, t.length, chain.steps.size());
         coder.start_chain();
         for (const Step s : chain.steps) {
             unsigned mask = 0, neg = 0;
@@ -371,17 +403,50 @@ std::string write_tick_block(const Block& block) {
         }
         ref = chain.end();
     }
-    out += io.rc.finish();
+}
+
+}  // namespace
+
+std::string write_tick_block(const Block& block, bool mixed) {
+    const int axes = block.axes;
+    if (axes < 2 || axes > kMaxAxes) return {};
+    std::uint64_t nsteps = 0;
+    for (const Chain& chain : block.chains) {
+        for (const Step s : chain.steps)
+            if (step_axis(s, 0) != 1) return {};
+        nsteps += chain.steps.size();
+    }
+    std::string out;
+    put_u8(out, kTickSubtype);
+    put_u8(out, mixed ? kTickMixed : kTickPlain);
+    put_varint(out, block.chains.size());
+    put_varint(out, nsteps);
+    put_layout(out, block.layout);
+    auto tables = std::make_unique<TickTables>();
+    if (mixed) {
+        MixPredictor pred(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+        MixEncIo io;
+        io.m = &pred;
+        write_ticks(io, *tables, block);
+        out += io.rc.finish();
+    } else {
+        EncIo io;
+        write_ticks(io, *tables, block);
+        out += io.rc.finish();
+    }
     return out;
 }
 
-Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
-                             const std::string& where) {
+namespace {
+
+template <class Io>
+Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                        const std::string& where) {
     Cursor cur(payload);
     unsigned subtype, coding;
     if (!cur.u8(subtype) || subtype != kTickSubtype)
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
-    if (!cur.u8(coding) || coding != kTickPlain)
+    if (!cur.u8(coding) || coding != (kMixedIo<Io> ? kTickMixed : kTickPlain))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of a tick block");
     std::uint64_t nchains, nsteps;
     if (!cur.varint(nchains) || !cur.varint(nsteps))
@@ -391,9 +456,15 @@ Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Bl
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
-    DecIo io(payload.substr(base));
-    TickCoder<DecIo> coder(io, axes);
-    ChainModels cm;
+    auto tables = std::make_unique<TickTables>();
+    std::unique_ptr<MixPredictor> pred;
+    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+    Io io = [&] {
+        if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
+        else return Io(payload.substr(base));
+    }();
+    TickTables& t = *tables;
+    TickCoder<Io> coder(io, t, axes);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
@@ -402,8 +473,9 @@ Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Bl
     std::uint64_t seen = 0;
     for (std::uint64_t i = 0; i < nchains; ++i) {
         Point d{};
-        for (int a = 0; a < axes; ++a) d[a] = code_sint(io, cm.start, 0);
-        const std::uint64_t n = code_uint(io, cm.length, 0);
+        io.field(3);
+        for (int a = 0; a < axes; ++a) d[a] = code_sint(io, t.start, 0);
+        const std::uint64_t n = code_uint(io, t.length, 0);
         if (io.failed || io.rc.overrun()) return fail("bad chain header");
         Chain chain;
         chain.axes = axes;
@@ -432,6 +504,16 @@ Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Bl
     counts.chains += nchains;
     counts.steps += nsteps;
     return {};
+}
+
+}  // namespace
+
+Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                             const std::string& where) {
+    // The coding byte picks the coder (an unknown one is reported by the plain reader).
+    if (payload.size() >= 2 && static_cast<unsigned char>(payload[1]) == kTickMixed)
+        return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
+    return read_ticks<DecIo>(payload, axes, expand, out, counts, where);
 }
 
 }  // namespace stepzip::stz

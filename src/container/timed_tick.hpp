@@ -22,7 +22,8 @@ inline constexpr unsigned kTickBlock = 8;
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-std::string write_tick_block(const Block& block);
+/// `mixed`: coded with mixed predictions (coding 1; the strong levels).
+std::string write_tick_block(const Block& block, bool mixed = false);
 
 /// Parses a tick-block payload into `out` (when `expand`) and adds its
 /// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit

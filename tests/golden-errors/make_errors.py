@@ -261,8 +261,8 @@ assert tick[8] & 7 == 7, 'v2/tick.steps.stz should start with an extended block'
 k_csize, k_payload = varint_at(tick, 9)
 assert tick[k_payload] == 2 and tick[k_payload + 1] == 0
 files.update({
-    # A coding other than 0 (the only one of a tick block).
-    'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 1))),
+    # A coding that is neither 0 (plain) nor 1 (mixed predictions).
+    'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 2))),
     # Subtype 1 names no block (0 timed, 2 tick).
     'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 1))),
 })
