@@ -102,8 +102,8 @@ private:
 /// One binary word (a letter per event) followed as the longest digital
 /// straight segment ending at its last letter (docs/FORMAT.md "Tick block":
 /// the follower). The context of the next letter: which letters the segment
-/// admits, its length, the current run against the last run of the same
-/// letter and the trend of the runs, a 1 now against the interval between
+/// admits, its length, the current run against the last two runs of the
+/// same letter and the trend of the runs, a 1 now against the interval between
 /// 1s extrapolated from the last three, and the time since the segment last
 /// broke against the length of the segment before.
 class Follower {
@@ -137,7 +137,7 @@ public:
     int admits() const { return (line_.admits(0) ? 1 : 0) | (line_.admits(1) ? 2 : 0); }
 
     /// Context of the next letter, given admits() == `adm`, below kContexts.
-    static constexpr int kContexts = 3 * 6 * 2 * 5 * 5 * 3 * 3;
+    static constexpr int kContexts = 3 * 6 * 2 * 5 * 5 * 3 * 3 * 3;
     int context(int adm) const {
         const int lb = std::min(bit_length(static_cast<std::uint64_t>(line_.length())), 11) / 2;
         const int c = last_ < 0 ? 0 : last_;
@@ -159,7 +159,8 @@ public:
             brk = since_break_ + tol < period_ ? 0 : since_break_ <= period_ + tol ? 1 : 2;
         }
         const int trend = r[0] == 0 || r[1] == 0 ? 1 : clamp_int(r[0] - r[1], -1, 1) + 1;
-        return (((((((adm - 1) * 6 + lb) * 2 + c) * 5 + e) * 5 + acc) * 3 + trend) * 3) + brk;
+        const int e1 = r[1] == 0 ? 1 : clamp_int(run_ + 1 - r[1], -1, 1) + 1;
+        return ((((((((adm - 1) * 6 + lb) * 2 + c) * 5 + e) * 5 + acc) * 3 + trend) * 3 + e1) * 3) + brk;
     }
 
     void push(int letter, int adm) {
