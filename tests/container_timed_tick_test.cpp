@@ -271,5 +271,30 @@ TEST(TickBlock, EveryPayloadByteFlipDecodesToSomethingOrIsRejected) {
     EXPECT_GT(rejected, 0);
 }
 
+// Random payloads behind a valid subtype and coding: every one is decoded or
+// rejected as corrupt or over a limit, naming where.
+TEST(TickBlock, RandomPayloadsAreDecodedOrRejectedWithTheirByte) {
+    std::mt19937 rng(13);
+    int rejected = 0;
+    for (int trial = 0; trial < 800; ++trial) {
+        std::string payload = {static_cast<char>(stz::kTickSubtype), static_cast<char>(trial % 2)};
+        const std::size_t n = 1 + rng() % 120;
+        for (std::size_t i = 0; i < n; ++i) payload.push_back(static_cast<char>(rng() % 256));
+        if (trial % 3 == 0) payload[2] = 1;  // one chain: the stream is reached more often
+        if (trial % 3 == 0 && payload.size() > 5) payload.replace(3, 3, std::string("\x40\x00\x00", 3));
+        Block out;
+        stz::BlockCounts counts;
+        auto r = stz::read_tick_block(payload, 3 + trial % 3, true, out, counts, "P");
+        if (!r.ok()) {
+            EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
+            // A payload byte, or the layout field (as every modeled block names it).
+            EXPECT_TRUE(r.error().message.rfind("P byte ", 0) == 0 || r.error().message.rfind("P layout", 0) == 0)
+                << r.error().message;
+            ++rejected;
+        }
+    }
+    EXPECT_GT(rejected, 500);
+}
+
 }  // namespace
 }  // namespace stepzip
