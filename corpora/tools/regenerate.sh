@@ -94,6 +94,12 @@ python3 "$here/timed_stream.py" --shapes 2 --seed 3 --tick-us 30 > "$out/timed/t
 python3 "$here/timed_stream.py" --axes 3 --shapes 3 --seed 11 --steps-mm 160 160 400 \
     --rate 4000 4000 1200 --accel 300 300 100 --jd 0.01 --tick-us 40 --segment-ms 8 \
     --cpu-mhz 20 > "$out/timed/trapezoid-3axis.steps"
+# Held out: never used to choose a parameter of the timed models (docs/benchmarks.md).
+python3 "$here/timed_stream.py" --shapes 1 --seed 27 --tick-us 40 --scurve > "$out/timed/heldout-scurve.steps"
+python3 "$here/timed_stream.py" --shapes 1 --seed 25 --tick-us 50 --amass-levels 0 --rate 4000 4000 \
+    --accel 300 300 > "$out/timed/heldout-noamass.steps"
+python3 "$here/timed_stream.py" --axes 3 --shapes 1 --seed 26 --tick-us 50 --pipeline --segment-ms 5 \
+    > "$out/timed/heldout-pipeline-3axis.steps"
 
 # The worst case: random walks.
 python3 "$here/random_walk.py" 8 100000 1 > "$out/random/walk-8.fc"

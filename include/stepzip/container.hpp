@@ -89,7 +89,7 @@ struct FrameInfo {
     std::uint64_t segment_model_blocks = 0;  ///< blocks coded by the segment model
     std::uint64_t step_model_blocks = 0;     ///< blocks coded by the step model
     std::uint64_t table_blocks = 0;          ///< table blocks (block type 5 and type 7 subtype 4, the fast levels)
-    std::uint64_t timed_blocks = 0;          ///< timed blocks (block type 7 subtype 0, timed frames)
+    std::uint64_t timed_blocks = 0;          ///< timed and tick blocks (block type 7 subtypes 0 and 2, timed frames)
     std::uint64_t chains = 0;           ///< chains in chain blocks (a chain split across blocks counts once)
     std::uint64_t steps = 0;            ///< steps in chain blocks
     std::uint64_t segments = 0;         ///< segments in chain blocks (none in step-model blocks)

@@ -12,6 +12,7 @@
 #include "table_block.hpp"
 #include "timed_block.hpp"
 #include "timed_phase.hpp"
+#include "timed_tick.hpp"
 
 namespace stepzip::stz {
 
@@ -586,6 +587,18 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                                                                : std::string();
             if (consider(kSegmentModel, std::move(rec))) job.cut = cuts[which];
             if (s.timed) timed_choice(job, s, cuts, type, best);
+        }
+        // Timed frames at every level: the tick block (type 7 subtype 2),
+        // kept when smaller than the segment-based blocks; from the strong
+        // level also with mixed predictions (coding 1).
+        if (s.timed) {
+            for (const bool mixed : {false, true}) {
+                if (mixed && s.level < kStrongLevel) break;
+                const std::string tick = write_tick_block(block, mixed);
+                if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
+                    consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
+                    job.cut.clear();
+            }
         }
     } else if (s.profile_named && block.axes == s.axes) {
         for (std::size_t c = 0; c < block.chains.size(); ++c) {

@@ -21,6 +21,7 @@
 #include "../common/bytes.hpp"
 #include "encoder.hpp"
 #include "memory_io.hpp"
+#include "timed_tick.hpp"
 #include "stepzip/container.hpp"
 
 namespace stepzip {
@@ -201,7 +202,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             if (j.type == kSegmentModel) ++info.segment_model_blocks;
             if (j.type == kStepModel) ++info.step_model_blocks;
             if (j.type == kTable) ++info.table_blocks;
-            if (j.type == kExtended) ++info.timed_blocks;
+            if (j.type == kExtended || j.type == kTickBlock) ++info.timed_blocks;
             info.chains += j.counts.chains;
             if (j.block.continues && chain_open && j.counts.chains > 0) --info.chains;
             chain_open = j.block.open;

@@ -18,6 +18,7 @@
 #include "memory_io.hpp"
 #include "table_block.hpp"
 #include "timed_block.hpp"
+#include "timed_tick.hpp"
 #include "window.hpp"
 #include "stepzip/container.hpp"
 
@@ -274,11 +275,10 @@ private:
                 // Block type 6 decodes as the model its first byte names.
                 const bool mixed = b.type == kMixedModel;
                 // Block type 7 decodes as the subtype its first byte names:
-                // a timed block, or a table block (read_table_block checks the rest).
-                const bool ext_table = b.type == kExtended && !payload.empty() &&
-                                       static_cast<unsigned char>(payload[0]) == kTableSubtype;
-                if (b.type == kExtended && !ext_table &&
-                    (payload.empty() || static_cast<unsigned char>(payload[0]) != kTimedSubtype))
+                // a timed or tick block, or a table block (read_table_block checks the rest).
+                const unsigned char sub = payload.empty() ? 0xFF : static_cast<unsigned char>(payload[0]);
+                const bool ext_table = b.type == kExtended && sub == kTableSubtype;
+                if (b.type == kExtended && !ext_table && sub != kTimedSubtype && sub != kTickSubtype)
                     return make_error(Errc::corrupt, what + " byte 0: unknown subtype of an extended block");
                 if (b.type == kExtended && !ext_table && hdr_.format != InputFormat::timed)
                     return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");
@@ -297,7 +297,7 @@ private:
                                            window_.limit() ? &contribution->items : nullptr,
                                            hdr_.format == InputFormat::timed, mixed);
                 } else if (model == kExtended) {
-                    r = read_timed_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
+                    r = read_extended_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,
                                          window_.limit() ? &contribution->items : nullptr);
                 } else if (model == kTable) {
                     r = read_table_block(payload, hdr_.profile, hdr_.axes, expand_, block, counts, what, w,

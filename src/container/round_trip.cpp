@@ -42,7 +42,7 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
         : rec.type == kTable || (rec.type == kExtended && job.type == kTable)
             ? read_table_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr, rec.type)
         : rec.type == kExtended
-            ? read_timed_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
+            ? read_extended_block(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w)
         : job.type == kSegmentModel
             ? read_segment_model(rec.payload, s.profile, s.axes, true, job.decoded, job.counts, where, w, nullptr,
                                  s.timed, mixed)

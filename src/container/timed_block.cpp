@@ -5,6 +5,7 @@
 
 #include "modeled_block.hpp"
 #include "timed_phase.hpp"
+#include "timed_tick.hpp"
 
 namespace stepzip::stz {
 
@@ -25,6 +26,19 @@ Result<void> read_timed_block(std::string_view payload, Profile p, int axes, boo
                               BlockCounts& counts, const std::string& where, const WindowView* window,
                               SegmentItems* items) {
     return read_segment_model(payload, p, axes, expand, out, counts, where, window, items, true, false, true);
+}
+
+Result<void> read_extended_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
+                                 BlockCounts& counts, const std::string& where, const WindowView* window,
+                                 SegmentItems* items) {
+    const unsigned subtype = payload.empty() ? 0xFFu : static_cast<unsigned char>(payload[0]);
+    if (subtype == kTickSubtype) {
+        if (items) *items = SegmentItems{};
+        return read_tick_block(payload, axes, expand, out, counts, where);
+    }
+    if (subtype != kTimedSubtype)
+        return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
+    return read_timed_block(payload, p, axes, expand, out, counts, where, window, items);
 }
 
 }  // namespace stepzip::stz

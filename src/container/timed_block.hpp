@@ -37,4 +37,13 @@ Result<void> read_timed_block(std::string_view payload, Profile p, int axes, boo
                               BlockCounts& counts, const std::string& where, const WindowView* window = nullptr,
                               SegmentItems* items = nullptr);
 
+/// Parses the payload of an extended block (block type 7) by its subtype
+/// (payload byte 0): the timed block (read_timed_block) or the tick block
+/// (read_tick_block, timed_tick.hpp; it neither reads the window nor
+/// contributes items). Errors: as those, and Errc::corrupt at byte 0 for
+/// another subtype.
+Result<void> read_extended_block(std::string_view payload, Profile p, int axes, bool expand, Block& out,
+                                 BlockCounts& counts, const std::string& where, const WindowView* window = nullptr,
+                                 SegmentItems* items = nullptr);
+
 }  // namespace stepzip::stz

@@ -254,6 +254,18 @@ files.update({
     # A coding that is neither 0 (plain) nor 1 (mixed predictions).
     'v2_timed_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(timed, t_payload + 1, 2))),
 })
+# Block type 7 subtype 2, the tick block (docs/FORMAT.md 1.13), from
+# tests/golden/v2/tick.steps.stz: its first block is a tick block.
+tick = open(os.path.join(here, '..', 'golden', 'v2', 'tick.steps.stz'), 'rb').read()
+assert tick[8] & 7 == 7, 'v2/tick.steps.stz should start with an extended block'
+k_csize, k_payload = varint_at(tick, 9)
+assert tick[k_payload] == 2 and tick[k_payload + 1] == 0
+files.update({
+    # A coding that is neither 0 (plain) nor 1 (mixed predictions).
+    'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 2))),
+    # Subtype 1 names no block (0 timed, 2 tick).
+    'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 1))),
+})
 # Arc items (docs/FORMAT.md 1.10.1), from tests/golden/v2/arcs_eval.fc.stz:
 # one table block that codes arcs (table-set bit 53, then the method byte).
 _, payloadA, arc_block, set_atA = first_table_block('arcs_eval.fc.stz')

@@ -1,0 +1,520 @@
+// Tick blocks; see timed_tick.hpp and docs/FORMAT.md "Tick block".
+// Complexity: O(ticks · axes · log L) for a block, L the length of the
+// digital straight segments followed (at most kMaxLine letters); a break
+// of a segment re-reads at most kRebuild letters.
+#include "timed_tick.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "modeled_block.hpp"
+#include "mix.hpp"
+#include "range_coder.hpp"
+#include "../common/bytes.hpp"
+#include "../segment/dss.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+namespace dss = stepzip::detail::dss;
+
+/// The codings of a tick block (payload byte 1): adaptive contexts, or
+/// mixed predictions (FORMAT.md 1.11's mixer).
+constexpr unsigned kTickPlain = 0, kTickMixed = 1;
+/// A segment followed is cut back to its longest suffix of at most
+/// kRebuild letters that is straight when it breaks, and when it reaches
+/// kMaxLine letters (the hull arithmetic stays far inside 64 bits).
+constexpr std::size_t kRebuild = 256;
+constexpr std::int64_t kMaxLine = std::int64_t{1} << 16;
+/// The letters kept behind a segment's start.
+constexpr std::size_t kKeep = 4 * kRebuild;
+
+int clamp_int(std::int64_t v, int lo, int hi) { return static_cast<int>(std::clamp<std::int64_t>(v, lo, hi)); }
+
+/// A two-letter word read a letter at a time, as WordRecognizer reads it
+/// (the hull form of dss.hpp): whether a letter may follow with the word
+/// still a digital straight segment, without reading it. Lengths stay below
+/// kMaxLine + kRebuild, so 64-bit products suffice.
+class Line {
+public:
+    void reset() {
+        zeros_.clear();
+        ones_.clear();
+        lo_set_ = hi_set_ = false;
+        p_ = q_ = 0;
+    }
+    std::int64_t length() const { return p_ + q_; }
+    bool admits(int letter) const { return admits_run(letter, 1); }
+    /// Whether k >= 1 letters `letter` may follow: as admits() for the last
+    /// of them (a bound moves only by the tangent to the run's last
+    /// position, the farthest from the opposite hull).
+    bool admits_run(int letter, std::int64_t k) const {
+        std::int64_t n, d;
+        if (letter == 0) {
+            if (!lo_set_ || !dss::min_slope_to<std::int64_t>(ones_, dss::Pt{p_ + k - 1, q_}, n, d)) return true;
+            if (hi_set_ && !dss::less<std::int64_t>(n, d, hi_.n, hi_.d)) return true;  // hi unchanged
+            return dss::less<std::int64_t>(lo_.n, lo_.d, n, d);
+        }
+        if (!hi_set_ || !dss::max_slope_to<std::int64_t>(zeros_, dss::Pt{p_, q_ + k - 1}, n, d)) return true;
+        if (lo_set_ && !dss::less<std::int64_t>(lo_.n, lo_.d, n, d)) return true;  // lo unchanged
+        return dss::less<std::int64_t>(n, d, hi_.n, hi_.d);
+    }
+    /// Appends a letter that admits() allowed.
+    void read(int letter) { read_run(letter, 1); }
+    /// Appends k >= 1 letters `letter` that admits_run() allowed, with the
+    /// state k calls of read() leave: a run's inner positions are never hull
+    /// vertices and never give a bound.
+    void read_run(int letter, std::int64_t k) {
+        std::int64_t n, d;
+        if (letter == 0) {
+            const dss::Pt last{p_ + k - 1, q_};
+            if (dss::min_slope_to<std::int64_t>(ones_, last, n, d) &&
+                (!hi_set_ || dss::less<std::int64_t>(n, d, hi_.n, hi_.d))) {
+                hi_ = {n, d};
+                hi_set_ = true;
+            }
+            dss::push_lower<std::int64_t>(zeros_, dss::Pt{p_, q_});
+            if (k >= 2) dss::push_lower<std::int64_t>(zeros_, last);
+            p_ += k;
+        } else {
+            const dss::Pt top{p_, q_ + k - 1};
+            if (dss::max_slope_to<std::int64_t>(zeros_, top, n, d) &&
+                (!lo_set_ || dss::less<std::int64_t>(lo_.n, lo_.d, n, d))) {
+                lo_ = {n, d};
+                lo_set_ = true;
+            }
+            dss::push_upper<std::int64_t>(ones_, top);
+            q_ += k;
+        }
+    }
+
+private:
+    std::vector<dss::Pt> zeros_, ones_;
+    dss::Frac lo_{0, 1}, hi_{0, 1};
+    bool lo_set_ = false, hi_set_ = false;
+    std::int64_t p_ = 0, q_ = 0;
+};
+
+/// One binary word (a letter per event) followed as the longest digital
+/// straight segment ending at its last letter (docs/FORMAT.md "Tick block":
+/// the follower). The context of the next letter: which letters the segment
+/// admits, its length, the current run against the last two runs of the
+/// same letter and the trend of the runs, a 1 now against the interval between
+/// 1s extrapolated from the last three, and the time since the segment last
+/// broke against the length of the segment before.
+class Follower {
+public:
+    void reset() {
+        line_.reset();
+        hist_.clear();
+        start_ = 0;
+        last_ = -1;
+        run_ = 0;
+        runs_ = {};
+        since_break_ = 0;
+        period_ = 0;
+        ones_.fill(-1);
+        n_ = 0;
+        recent_ = 0;
+    }
+
+    /// The last 64 letters, the latest in bit 0 (mixed coding).
+    std::uint64_t recent() const { return recent_; }
+    /// The current run (its letter, 0 before any, and length) and the last
+    /// complete run of its letter (mixed coding).
+    std::uint64_t run_key() const {
+        const int c = last_ < 0 ? 0 : last_;
+        const auto cap = [](std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 255)); };
+        return (cap(run_) << 17) | (cap(runs_[static_cast<std::size_t>(c)][0]) << 9) |
+               (cap(runs_[static_cast<std::size_t>(c)][1]) << 1) | static_cast<std::uint64_t>(c);
+    }
+
+    /// Letters the segment admits next: 1 zero only, 2 one only, 3 both.
+    int admits() const { return (line_.admits(0) ? 1 : 0) | (line_.admits(1) ? 2 : 0); }
+
+    /// Context of the next letter, given admits() == `adm`, below kContexts.
+    static constexpr int kContexts = 3 * 6 * 2 * 5 * 5 * 3 * 3 * 3;
+    int context(int adm) const {
+        const int lb = std::min(bit_length(static_cast<std::uint64_t>(line_.length())), 11) / 2;
+        const int c = last_ < 0 ? 0 : last_;
+        const auto& r = runs_[static_cast<std::size_t>(c)];
+        // The run so far, one longer, against the last complete run of its letter.
+        const int e = r[0] == 0 ? 2 : clamp_int(run_ + 1 - r[0], -2, 2) + 2;
+        // A one now against the next interval between ones extrapolated
+        // from the last three (a line through them: constant acceleration),
+        // in thirds of an event.
+        int acc = 2;
+        if (ones_[3] >= 0) {
+            const std::int64_t d1 = ones_[0] - ones_[1], d2 = ones_[1] - ones_[2], d3 = ones_[2] - ones_[3];
+            const std::int64_t v = 3 * (n_ - ones_[0]) - (d1 + d2 + d3) - 3 * (d1 - d3);
+            acc = clamp_int(dss::floor_div(v + 1, 3), -2, 2) + 2;
+        }
+        int brk = 0;
+        if (period_ > 0) {
+            const std::int64_t tol = period_ / 8 + 1;
+            brk = since_break_ + tol < period_ ? 0 : since_break_ <= period_ + tol ? 1 : 2;
+        }
+        const int trend = r[0] == 0 || r[1] == 0 ? 1 : clamp_int(r[0] - r[1], -1, 1) + 1;
+        const int e1 = r[1] == 0 ? 1 : clamp_int(run_ + 1 - r[1], -1, 1) + 1;
+        return ((((((((adm - 1) * 6 + lb) * 2 + c) * 5 + e) * 5 + acc) * 3 + trend) * 3 + e1) * 3) + brk;
+    }
+
+    void push(int letter, int adm) {
+        hist_.push_back(static_cast<std::uint8_t>(letter));
+        ++since_break_;
+        if (letter == 1) {
+            for (int i = 3; i > 0; --i) ones_[i] = ones_[i - 1];
+            ones_[0] = n_;
+        }
+        ++n_;
+        recent_ = (recent_ << 1) | static_cast<std::uint64_t>(letter);
+        if ((adm >> letter) & 1) {
+            line_.read(letter);
+            if (line_.length() >= kMaxLine) rebuild();
+        } else {
+            rebuild();
+            period_ = since_break_;
+            since_break_ = 0;
+        }
+        if (letter == last_) {
+            ++run_;
+        } else {
+            if (last_ >= 0) {
+                auto& r = runs_[static_cast<std::size_t>(last_)];
+                r[1] = r[0];
+                r[0] = run_;
+            }
+            last_ = letter;
+            run_ = 1;
+        }
+        if (start_ > 2 * kKeep) {  // forget the letters no rebuild can reach
+            const std::size_t drop = start_ - kKeep;
+            hist_.erase(hist_.begin(), hist_.begin() + static_cast<std::ptrdiff_t>(drop));
+            start_ -= drop;
+        }
+    }
+
+private:
+    // The segment becomes the longest straight suffix of at most kRebuild
+    // letters (a word is straight iff its reverse is: it is read backward).
+    void rebuild() {
+        // Backward, a run at a time: where a run is not admitted whole, the
+        // longest admitted part of it (admission only shrinks along a run).
+        back_.reset();
+        const std::size_t end = hist_.size();
+        std::size_t i = end;
+        while (i > 0 && end - i < kRebuild) {
+            const int letter = hist_[i - 1];
+            std::size_t j = i - 1;
+            while (j > 0 && hist_[j - 1] == letter && end - j < kRebuild) --j;
+            const auto k = static_cast<std::int64_t>(i - j);
+            if (back_.admits_run(letter, k)) {
+                back_.read_run(letter, k);
+                i = j;
+                continue;
+            }
+            std::int64_t good = 0, bad = k;
+            while (bad - good > 1) {
+                const std::int64_t mid = (good + bad) / 2;
+                (back_.admits_run(letter, mid) ? good : bad) = mid;
+            }
+            i -= static_cast<std::size_t>(good);
+            break;
+        }
+        line_.reset();
+        start_ = i;
+        for (std::size_t j = i; j < end;) {
+            std::size_t r = j + 1;
+            while (r < end && hist_[r] == hist_[j]) ++r;
+            line_.read_run(hist_[j], static_cast<std::int64_t>(r - j));
+            j = r;
+        }
+    }
+
+    Line line_, back_;
+    std::vector<std::uint8_t> hist_;
+    std::size_t start_ = 0;
+    int last_ = -1;
+    std::int64_t run_ = 0;
+    std::array<std::array<std::int64_t, 2>, 2> runs_{};  // per letter: its last two complete runs
+    std::int64_t since_break_ = 0, period_ = 0;
+    std::array<std::int64_t, 4> ones_{-1, -1, -1, -1};  // events of the last four ones, latest first
+    std::int64_t n_ = 0;                                 // events read
+    std::uint64_t recent_ = 0;                           // the last 64 letters, latest in bit 0
+};
+
+constexpr int kMinor = kMaxAxes - 1;  // axes besides time
+constexpr int kSinceBuckets = 16;
+
+/// Every adaptive context of a tick block, in the order of FORMAT.md 1.13
+/// "Slots" (a mixed decision's slot is its context's index here).
+struct TickTables {
+    UIntModel start, length;
+    struct Axis {
+        std::array<Prob, std::size_t{8} * Follower::kContexts> step;
+        std::array<Prob, kSinceBuckets> dir;
+    };
+    std::array<Axis, kMinor> axis;
+};
+static_assert(sizeof(TickTables) % sizeof(Prob) == 0);
+
+/// The tick model of one block, shared by the encoder (EncIo) and the
+/// decoder (DecIo). Not thread-safe.
+template <class Io>
+class TickCoder {
+public:
+    TickCoder(Io& io, TickTables& t, int axes) : io_(io), t_(t), minor_(axes - 1) {}
+
+    /// A chain's start: every follower forgets.
+    void start_chain() {
+        for (auto& f : axis_) f.reset();
+        for (auto& f : bres_) f.reset();
+        sign_.fill(1);
+        since_.fill(0);
+        gap_.fill(0);
+        leader_ = -1;
+        history_ = 0;
+    }
+
+    /// One tick: `mask` bit a set when axis a + 1 steps, `neg` bit a when
+    /// it steps backward (encoder: given; decoder: filled in).
+    void tick(unsigned& mask, unsigned& neg) {
+        // The axes in order of their step rate, fastest first: the leader
+        // (a controller's Bresenham major axis) is coded first, and the
+        // others on the ticks where it steps follow their own line.
+        std::array<int, kMinor> order{};
+        std::array<std::int64_t, kMinor> keys{};
+        for (int a = 0; a < minor_; ++a) {  // insertion: stable, at most five axes
+            const std::int64_t k = key(a);
+            int i = a;
+            for (; i > 0 && keys[static_cast<std::size_t>(i - 1)] > k; --i) {
+                keys[static_cast<std::size_t>(i)] = keys[static_cast<std::size_t>(i - 1)];
+                order[static_cast<std::size_t>(i)] = order[static_cast<std::size_t>(i - 1)];
+            }
+            keys[static_cast<std::size_t>(i)] = k;
+            order[static_cast<std::size_t>(i)] = a;
+        }
+        if (order[0] != leader_) {
+            leader_ = order[0];
+            for (auto& f : bres_) f.reset();
+        }
+        unsigned m = 0, n = 0;
+        int lead_step = 0;
+        for (int i = 0; i < minor_; ++i) {
+            const int a = order[static_cast<std::size_t>(i)];
+            const auto ua = static_cast<std::size_t>(a);
+            Follower& f = axis_[ua];
+            const int fa = f.admits();
+            const int ba = i > 0 && lead_step ? bres_[ua].admits() : 0;
+            const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
+            if constexpr (kMixedIo<Io>) {
+                const std::uint64_t ax = static_cast<std::uint64_t>(a);
+                io_.field(i == 0 ? 0 : 1);
+                mix_context(io_, 0, ctx_join(ctx_join(ax, 1), f.recent() & 0xFFFFu));
+                mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
+                mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
+                mix_context(io_, 3, ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
+                mix_context(io_, 4, ctx_join(ctx_join(ax, 5), (static_cast<std::uint64_t>(fa) << 2) | static_cast<std::uint64_t>(ba)));
+                mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
+            }
+            const int step = io_.bit(t_.axis[ua].step[ctx], static_cast<int>((mask >> a) & 1u));
+            f.push(step, fa);
+            if (ba != 0) bres_[ua].push(step, ba);
+            if (i == 0) lead_step = step;
+            if (step) {
+                const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
+                if constexpr (kMixedIo<Io>) {
+                    io_.field(2);
+                    for (int k = 0; k < kMixBaseModels; ++k)
+                        mix_context(io_, k, ctx_join(ctx_join(static_cast<std::uint64_t>(a), 16 + static_cast<std::uint64_t>(k)),
+                                                     capped(since_[ua])));
+                }
+                const int flip = io_.bit(t_.axis[ua].dir[static_cast<std::size_t>(sb)],
+                                         static_cast<int>(((neg >> a) & 1u) != (sign_[ua] < 0)));
+                if (flip) sign_[ua] = -sign_[ua];
+                m |= 1u << a;
+                if (sign_[ua] < 0) n |= 1u << a;
+            }
+        }
+        for (int a = 0; a < minor_; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            if ((m >> a) & 1u) {
+                gap_[ua] = since_[ua] + 1;
+                since_[ua] = 0;
+            } else {
+                ++since_[ua];
+            }
+        }
+        history_ = (history_ << minor_) | m;
+        mask = m;
+        neg = n;
+    }
+
+private:
+    static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
+    // Ticks per step of axis a: its last interval, or the time it has
+    // rested when longer; unknown before its second step.
+    std::int64_t key(int a) const {
+        const auto ua = static_cast<std::size_t>(a);
+        return gap_[ua] == 0 ? INT64_MAX : std::max(gap_[ua], since_[ua]);
+    }
+
+    Io& io_;
+    int minor_;
+    std::array<Follower, kMinor> axis_;  // each axis over every tick
+    std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
+    int leader_ = -1;
+    TickTables& t_;
+    std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
+    std::array<int, kMinor> sign_{};
+    std::array<std::int64_t, kMinor> since_{}, gap_{};
+};
+
+
+}  // namespace
+
+namespace {
+
+// The chains of `block` (every step advancing time) coded through `io`.
+template <class Io>
+void write_ticks(Io& io, TickTables& t, const Block& block) {
+    const int axes = block.axes;
+    TickCoder<Io> coder(io, t, axes);
+    Point ref{};
+    for (const Chain& chain : block.chains) {
+        io.field(3);
+        for (int a = 0; a < axes; ++a)  // modulo 2^64, as the decoder adds it back
+            code_sint(io, t.start,
+                      static_cast<std::int64_t>(static_cast<std::uint64_t>(chain.start[a]) -
+                                                static_cast<std::uint64_t>(ref[a])));
+        code_uint(io, t.length, chain.steps.size());
+        coder.start_chain();
+        for (const Step s : chain.steps) {
+            unsigned mask = 0, neg = 0;
+            for (int a = 1; a < axes; ++a) {
+                const int d = step_axis(s, a);
+                if (d != 0) mask |= 1u << (a - 1);
+                if (d < 0) neg |= 1u << (a - 1);
+            }
+            coder.tick(mask, neg);
+        }
+        ref = chain.end();
+    }
+}
+
+}  // namespace
+
+std::string write_tick_block(const Block& block, bool mixed) {
+    const int axes = block.axes;
+    if (axes < 2 || axes > kMaxAxes) return {};
+    std::uint64_t nsteps = 0;
+    for (const Chain& chain : block.chains) {
+        for (const Step s : chain.steps)
+            if (step_axis(s, 0) != 1) return {};
+        nsteps += chain.steps.size();
+    }
+    std::string out;
+    put_u8(out, kTickSubtype);
+    put_u8(out, mixed ? kTickMixed : kTickPlain);
+    put_varint(out, block.chains.size());
+    put_varint(out, nsteps);
+    put_layout(out, block.layout);
+    auto tables = std::make_unique<TickTables>();
+    if (mixed) {
+        MixPredictor pred(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+        MixEncIo io;
+        io.m = &pred;
+        write_ticks(io, *tables, block);
+        out += io.rc.finish();
+    } else {
+        EncIo io;
+        write_ticks(io, *tables, block);
+        out += io.rc.finish();
+    }
+    return out;
+}
+
+namespace {
+
+template <class Io>
+Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                        const std::string& where) {
+    Cursor cur(payload);
+    unsigned subtype, coding;
+    if (!cur.u8(subtype) || subtype != kTickSubtype)
+        return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
+    if (!cur.u8(coding) || coding != (kMixedIo<Io> ? kTickMixed : kTickPlain))
+        return make_error(Errc::corrupt, where + " byte 1: unknown coding of a tick block");
+    std::uint64_t nchains, nsteps;
+    if (!cur.varint(nchains) || !cur.varint(nsteps))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
+    if (nchains > kMaxBlockChains || nsteps > kMaxBlockSteps)
+        return make_error(Errc::limit, where + " byte 2: payload declares more chains or steps than the limits");
+    auto layout = get_layout(cur, where);
+    if (!layout) return std::move(layout).error();
+    const std::size_t base = cur.pos();
+    auto tables = std::make_unique<TickTables>();
+    std::unique_ptr<MixPredictor> pred;
+    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+    Io io = [&] {
+        if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
+        else return Io(payload.substr(base));
+    }();
+    TickTables& t = *tables;
+    TickCoder<Io> coder(io, t, axes);
+    start_output(out, expand, axes, std::move(*layout));
+    auto fail = [&](const char* what) {
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
+    };
+    Point ref{};
+    std::uint64_t seen = 0;
+    for (std::uint64_t i = 0; i < nchains; ++i) {
+        Point d{};
+        io.field(3);
+        for (int a = 0; a < axes; ++a) d[a] = code_sint(io, t.start, 0);
+        const std::uint64_t n = code_uint(io, t.length, 0);
+        if (io.failed || io.rc.overrun()) return fail("bad chain header");
+        Chain chain;
+        chain.axes = axes;
+        if (!rebuild_start(ref, d, axes, chain.start)) return fail("chain start out of range");
+        if (n > nsteps - seen) return fail("more steps than declared");
+        seen += n;
+        coder.start_chain();
+        if (expand) chain.steps.reserve(static_cast<std::size_t>(n));
+        Point pos = chain.start;
+        for (std::uint64_t k = 0; k < n; ++k) {
+            unsigned mask = 0, neg = 0;
+            coder.tick(mask, neg);
+            if (io.rc.overrun()) return fail("range-coded stream ends early");
+            int dd[kMaxAxes] = {1};
+            for (int a = 1; a < axes; ++a)
+                dd[a] = ((mask >> (a - 1)) & 1u) ? (((neg >> (a - 1)) & 1u) ? -1 : 1) : 0;
+            const Step s = make_step(dd, axes);
+            apply_step(pos, s, axes);
+            if (expand) chain.steps.push_back(s);
+        }
+        ref = pos;
+        if (expand) out.chains.push_back(std::move(chain));
+    }
+    if (seen != nsteps) return fail("declared step count does not match");
+    if (!io.rc.finished()) return fail("range-coded stream does not end at the payload's end");
+    counts.chains += nchains;
+    counts.steps += nsteps;
+    return {};
+}
+
+}  // namespace
+
+Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                             const std::string& where) {
+    // The coding byte picks the coder (an unknown one is reported by the plain reader).
+    if (payload.size() >= 2 && static_cast<unsigned char>(payload[1]) == kTickMixed)
+        return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
+    return read_ticks<DecIo>(payload, axes, expand, out, counts, where);
+}
+
+}  // namespace stepzip::stz

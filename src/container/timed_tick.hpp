@@ -1,0 +1,34 @@
+// The tick block (docs/FORMAT.md "Tick block"): block type 7, subtype 2. A
+// timed frame's chains coded tick by tick instead of segment by segment:
+// on each tick, whether each axis steps and, when it does, whether it
+// reverses, each one adaptive binary decision whose context is chiefly what
+// the axis's digital straight segment in (time, axis) -- a constant step
+// rate -- ending at the tick admits next. Internal to src/container.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "block_codec.hpp"
+
+namespace stepzip::stz {
+
+/// Subtype 2 of block type 7: the tick block.
+inline constexpr unsigned kTickSubtype = 2;
+/// The encoder's name for a block written as a tick block (its record is of
+/// block type 7): not a block type of the format.
+inline constexpr unsigned kTickBlock = 8;
+
+/// Payload of a tick block for `block` (subtype and coding bytes first);
+/// empty when the block cannot be one: a step that does not advance time
+/// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
+/// `mixed`: coded with mixed predictions (coding 1; the strong levels).
+std::string write_tick_block(const Block& block, bool mixed = false);
+
+/// Parses a tick-block payload into `out` (when `expand`) and adds its
+/// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit
+/// naming the payload byte after `where`.
+Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                             const std::string& where);
+
+}  // namespace stepzip::stz

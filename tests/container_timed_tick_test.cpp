@@ -1,0 +1,300 @@
+// The tick block (docs/FORMAT.md 1.13, block type 7 subtype 2): round trips
+// of blocks on every axis count (chains, empty chains, reversals, layouts,
+// idle stretches), of whole frames cut into many blocks at every tier, what
+// a constant rate costs, and its corrupt cases named by payload byte.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../src/common/bytes.hpp"
+#include "../src/container/block_codec.hpp"
+#include "../src/container/timed_tick.hpp"
+#include "stepzip/container.hpp"
+
+namespace stepzip {
+namespace {
+
+// A timed chain on `axes` axes (axis 0 time): stretches of constant rate
+// per axis, rests, reversals; the rates and lengths vary with the seed.
+Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
+    Chain c;
+    c.axes = axes;
+    c.start = start;
+    std::vector<double> rate(static_cast<std::size_t>(axes)), acc(static_cast<std::size_t>(axes));
+    std::vector<int> dir(static_cast<std::size_t>(axes), 1);
+    while (c.steps.size() < ticks) {
+        // A stretch: every axis a rate in (0, 1] or a rest, maybe a reversal.
+        const std::size_t len = 20 + rng() % 400;
+        for (int a = 1; a < axes; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            rate[ua] = rng() % 4 == 0 ? 0.0 : 1.0 / (1 + rng() % 12) + (rng() % 100) * 1e-4;
+            if (rng() % 5 == 0) dir[ua] = -dir[ua];
+        }
+        for (std::size_t t = 0; t < len && c.steps.size() < ticks; ++t) {
+            int d[kMaxAxes] = {1};
+            for (int a = 1; a < axes; ++a) {
+                const auto ua = static_cast<std::size_t>(a);
+                acc[ua] += rate[ua];
+                if (acc[ua] >= 1) {
+                    acc[ua] -= 1;
+                    d[a] = dir[ua];
+                }
+            }
+            c.steps.push_back(make_step(d, axes));
+        }
+    }
+    return c;
+}
+
+Block round_trip(const Block& in, bool mixed = false) {
+    const std::string payload = stz::write_tick_block(in, mixed);
+    EXPECT_FALSE(payload.empty());
+    EXPECT_EQ(static_cast<unsigned char>(payload[0]), stz::kTickSubtype);
+    EXPECT_EQ(static_cast<unsigned char>(payload[1]), mixed ? 1u : 0u);  // the coding
+    Block out;
+    stz::BlockCounts counts;
+    auto r = stz::read_tick_block(payload, in.axes, true, out, counts, "test");
+    EXPECT_TRUE(r.ok()) << r.error().message;
+    std::uint64_t steps = 0;
+    for (const Chain& c : in.chains) steps += c.steps.size();
+    EXPECT_EQ(counts.chains, in.chains.size());
+    EXPECT_EQ(counts.steps, steps);
+    EXPECT_EQ(counts.segments, 0u);
+    return out;
+}
+
+TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
+    std::mt19937 rng(7);
+    for (int axes = 2; axes <= kMaxAxes; ++axes)
+        for (int variant = 0; variant < 3; ++variant) {
+            Block b;
+            b.axes = axes;
+            Point start{};
+            start[0] = 1000 * variant;
+            start[1] = -37;
+            b.chains.push_back(timed_chain(rng, axes, 3000 + 1000 * static_cast<std::size_t>(variant), start));
+            if (variant >= 1) {
+                b.chains.push_back(Chain{axes, b.chains.back().end(), {}});  // an empty chain
+                Point far = b.chains.back().start;
+                far[1] += 123456;
+                b.chains.push_back(timed_chain(rng, axes, 1500, far));
+            }
+            if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
+            for (const bool mixed : {false, true}) {
+                const Block out = round_trip(b, mixed);
+                EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " mixed " << mixed;
+                EXPECT_EQ(out.layout, b.layout);
+                EXPECT_EQ(out.axes, axes);
+            }
+        }
+}
+
+TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
+    Block empty;
+    empty.axes = 3;
+    EXPECT_TRUE(round_trip(empty).chains.empty());
+    EXPECT_TRUE(round_trip(empty, true).chains.empty());
+    Block idle;
+    idle.axes = 3;
+    idle.chains.push_back(Chain{3, Point{}, std::vector<Step>(50000, make_step2(1, 0))});
+    EXPECT_EQ(round_trip(idle).chains, idle.chains);
+    EXPECT_EQ(round_trip(idle, true).chains, idle.chains);
+}
+
+TEST(TickBlock, StepThatDoesNotAdvanceTimeIsNotATickBlock) {
+    Block b;
+    b.axes = 3;
+    int d[kMaxAxes] = {0, 1, 0};
+    b.chains.push_back(Chain{3, Point{}, {make_step2(1, 1), make_step(d, 3)}});
+    EXPECT_TRUE(stz::write_tick_block(b).empty());
+}
+
+// A constant rate costs almost nothing: its line admits one letter on
+// nearly every tick.
+TEST(TickBlock, ConstantRateCostsAlmostNothing) {
+    for (double rate : {1.0 / 7, 0.3183, 0.05}) {
+        Block b;
+        b.axes = 3;
+        Chain c{3, Point{}, {}};
+        double acc = 0.5;
+        for (int t = 0; t < 200000; ++t) {
+            acc += rate;
+            int d[kMaxAxes] = {1, 0, 0};
+            if (acc >= 1) {
+                acc -= 1;
+                d[1] = 1;
+            }
+            c.steps.push_back(make_step(d, 3));
+        }
+        b.chains.push_back(std::move(c));
+        const std::string payload = stz::write_tick_block(b);
+        // 200000 ticks, thousands of steps: under a bit per 1000 ticks.
+        EXPECT_LT(payload.size(), 150u) << "rate " << rate;
+        EXPECT_EQ(round_trip(b).chains, b.chains);
+    }
+}
+
+// A controller-like log: the leading axis at a rate that ramps every
+// `seg` ticks, the other by Bresenham on its steps, DIR set ahead.
+std::string controller_log(std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::string log;
+    for (int move = 0; move < 6; ++move) {
+        const long major = 300 + static_cast<long>(rng() % 900), minor = static_cast<long>(rng() % 300);
+        const unsigned dirs = (rng() % 2 ? 2u : 0u) | (rng() % 2 ? 8u : 0u);
+        log.append(5, static_cast<char>(dirs));
+        double rate = 0.01, acc = 0;
+        long done = 0, err = major / 2;
+        while (done < major) {
+            rate = std::min(0.3, rate + 0.004);
+            for (int t = 0; t < 120 && done < major; ++t) {
+                acc += rate;
+                unsigned tick = dirs;
+                if (acc >= 1) {
+                    acc -= 1;
+                    ++done;
+                    tick |= 1u;
+                    err -= minor;
+                    if (err < 0) {
+                        err += major;
+                        tick |= 4u;
+                    }
+                }
+                log.push_back(static_cast<char>(tick));
+            }
+        }
+    }
+    const auto first = log.find_first_of(std::string("\x01\x03\x04\x06\x05\x07\x0c\x0d\x0e\x0f\x09\x0b", 12));
+    return log.substr(first);
+}
+
+// Tick blocks of a one-frame version-2 file: its block records walked
+// with the library's varint reader.
+std::size_t tick_blocks(const std::string& frame) {
+    wire::Cursor cur(std::string_view(frame).substr(8));  // after the frame header
+    std::size_t n = 0;
+    unsigned first = 0;
+    std::uint64_t csize = 0, dsize = 0;
+    while (cur.u8(first) && first != 0 && cur.varint(csize)) {
+        const unsigned type = first & 7u;
+        if ((type == stz::kChains || type == stz::kRaw) && !cur.varint(dsize)) break;
+        std::string_view payload;
+        if (!cur.bytes(static_cast<std::size_t>(csize) + 4, payload)) break;  // payload and block checksum
+        if (type == stz::kExtended && static_cast<unsigned char>(payload[0]) == stz::kTickSubtype) ++n;
+    }
+    return n;
+}
+
+// Mixed predictions (coding 1, the strong levels) learn a controller's
+// patterns that the plain contexts do not see.
+TEST(TickBlock, MixedCodingIsSmallerOnAControllerLog) {
+    std::mt19937 rng(11);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 60000, Point{}));
+    EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
+}
+
+TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
+    for (std::uint32_t seed : {1u, 2u}) {
+        const std::string log = controller_log(seed);
+        ASSERT_GT(log.size(), 20000u);
+        for (int level : {1, 3, 10, 19}) {
+            CompressOptions opt;
+            opt.format = InputFormat::timed;
+            opt.level = level;
+            opt.allow_raw = false;
+            opt.block_steps = 1u << 13;  // chains continue across blocks
+            auto z = compress(log, opt);
+            ASSERT_TRUE(z.ok()) << z.error().message;
+            EXPECT_GT(tick_blocks(*z), 1u) << "seed " << seed << " level " << level;
+            auto back = decompress(*z);
+            ASSERT_TRUE(back.ok()) << back.error().message;
+            EXPECT_EQ(*back, log) << "seed " << seed << " level " << level;
+        }
+    }
+}
+
+TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
+    std::mt19937 rng(3);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 4000, Point{}));
+    const std::string payload = stz::write_tick_block(b);
+    Block out;
+    stz::BlockCounts counts;
+    std::string bad = payload;
+    bad[1] = 2;
+    auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
+    ASSERT_FALSE(coding.ok());
+    EXPECT_EQ(coding.error().code, Errc::corrupt);
+    EXPECT_EQ(coding.error().message, "P byte 1: unknown coding of a tick block");
+    auto longer = stz::read_tick_block(payload + std::string(3, '\0'), 3, true, out, counts, "P");
+    ASSERT_FALSE(longer.ok());
+    EXPECT_EQ(longer.error().code, Errc::corrupt);
+    for (std::size_t cut : {std::size_t{1}, std::size_t{3}, payload.size() / 2, payload.size() - 1}) {
+        auto r = stz::read_tick_block(std::string_view(payload).substr(0, cut), 3, true, out, counts, "P");
+        ASSERT_FALSE(r.ok()) << "cut at " << cut;
+        EXPECT_TRUE(r.error().code == Errc::corrupt) << r.error().message;
+        EXPECT_NE(r.error().message.find("P byte "), std::string::npos) << r.error().message;
+    }
+}
+
+TEST(TickBlock, EveryPayloadByteFlipDecodesToSomethingOrIsRejected) {
+    std::mt19937 rng(5);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 1500, Point{}));
+    int rejected = 0;
+    for (const bool mixed : {false, true}) {
+        const std::string payload = stz::write_tick_block(b, mixed);
+        for (std::size_t k = 0; k < payload.size(); ++k)
+            for (int bit = 0; bit < 8; bit += 3) {
+                std::string bad = payload;
+                bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
+                Block out;
+                stz::BlockCounts counts;
+                auto r = stz::read_tick_block(bad, 3, true, out, counts, "P");
+                if (!r.ok()) {
+                    EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
+                    ++rejected;
+                } else {
+                    for (const Chain& c : out.chains)
+                        for (Step s : c.steps) EXPECT_EQ(step_axis(s, 0), 1);  // every decoded tick advances time
+                }
+            }
+    }
+    EXPECT_GT(rejected, 0);
+}
+
+// Random payloads behind a valid subtype and coding: every one is decoded or
+// rejected as corrupt or over a limit, naming where.
+TEST(TickBlock, RandomPayloadsAreDecodedOrRejectedWithTheirByte) {
+    std::mt19937 rng(13);
+    int rejected = 0;
+    for (int trial = 0; trial < 800; ++trial) {
+        std::string payload = {static_cast<char>(stz::kTickSubtype), static_cast<char>(trial % 2)};
+        const std::size_t n = 1 + rng() % 120;
+        for (std::size_t i = 0; i < n; ++i) payload.push_back(static_cast<char>(rng() % 256));
+        if (trial % 3 == 0) payload[2] = 1;  // one chain: the stream is reached more often
+        if (trial % 3 == 0 && payload.size() > 5) payload.replace(3, 3, std::string("\x40\x00\x00", 3));
+        Block out;
+        stz::BlockCounts counts;
+        auto r = stz::read_tick_block(payload, 3 + trial % 3, true, out, counts, "P");
+        if (!r.ok()) {
+            EXPECT_TRUE(r.error().code == Errc::corrupt || r.error().code == Errc::limit) << r.error().message;
+            // A payload byte, or the layout field (as every modeled block names it).
+            EXPECT_TRUE(r.error().message.rfind("P byte ", 0) == 0 || r.error().message.rfind("P layout", 0) == 0)
+                << r.error().message;
+            ++rejected;
+        }
+    }
+    EXPECT_GT(rejected, 500);
+}
+
+}  // namespace
+}  // namespace stepzip
