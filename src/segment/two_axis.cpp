@@ -78,7 +78,7 @@ TwoAxisGreedy::TwoAxisGreedy(Profile p) : profile_(p), eight_(profile_eight_conn
 // A run of k letters (see RunWord::probe): the largest valid prefix is the
 // largest count x within the upper bounds, if it passes the lower one; the
 // whole run is tried first by multiplications, a division only if it fails.
-inline std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
+STEPZIP_DSS_INLINE std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
     const std::int64_t alive = st_.alive(letter, k);
     best = 0;
     if (alive == 0) return 0;
@@ -119,61 +119,114 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
     const Step* st = steps.data();
     // Short segments (the common case on noisy contours): the letters of up
     // to kShortLetters steps index the table.
-    {
-        value_[0] = value_[1] = 0;
-        const std::size_t lim = std::min<std::size_t>(n, kShortLetters);
-        unsigned bits = 0;
-        std::size_t i = 0;
-        for (; i < lim; ++i) {
-            const Step s = st[i];
-            const int letter = letter_of(s, eight_);
-            if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
-            bits |= static_cast<unsigned>(letter) << i;
-        }
-        const unsigned e = short_words().entry[bits];
-        if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
-            const unsigned valid = e & ((2u << i) - 1u) & ~1u;
-            const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
-            const unsigned low = bits & ((1u << m) - 1u);
-            short_bits_ = bits;
-            short_ = true;
-            best_count_[1] = __builtin_popcount(low);
-            best_count_[0] = m - best_count_[1];
-            return m;
-        }
-    }
-    short_ = false;
-    st_.reset();
-    runs_.clear();
     value_[0] = value_[1] = 0;
-    std::int64_t best = 1, length = 0;
-    first_letter_ = letter_of(st[0], eight_);
-    best_count_[first_letter_] = 1;
-    best_count_[1 - first_letter_] = 0;
-    for (std::size_t pos = 0; pos < n;) {
+    const std::size_t lim = std::min<std::size_t>(n, kShortLetters);
+    unsigned bits = 0;
+    std::size_t i = 0;
+    for (; i < lim; ++i) {
+        const Step s = st[i];
+        const int letter = letter_of(s, eight_);
+        if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
+        bits |= static_cast<unsigned>(letter) << i;
+    }
+    const unsigned e = short_words().entry[bits];
+    if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
+        const unsigned valid = e & ((2u << i) - 1u) & ~1u;
+        const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
+        const unsigned low = bits & ((1u << m) - 1u);
+        short_bits_ = bits;
+        short_ = true;
+        best_count_[1] = __builtin_popcount(low);
+        best_count_[0] = m - best_count_[1];
+        return m;
+    }
+    // A balanced word of kShortLetters letters: the state after its
+    // leading runs (all but the last, which may go on past them) from the
+    // table, then the runs from there.
+    short_ = false;
+    const Resume& r = resume_table()[bits];
+    st_.assign(r.st);
+    runs_.assign(r.runs.begin(), r.runs.end());
+    first_letter_ = r.first_letter;
+    std::int64_t best = r.best, length = r.length;
+    best_count_[0] = r.best_count[0];
+    best_count_[1] = r.best_count[1];
+    auto pos = static_cast<std::size_t>(length);
+    while (pos < n) {
         const Step s = st[pos];
         const int letter = letter_of(s, eight_);
         if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
         std::size_t e = pos + 1;
         while (e < n && st[e] == s) ++e;
-        const auto k = static_cast<std::int64_t>(e - pos);
-        runs_.push_back(k);
-        const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
-        if (kk <= 0) break;
-        std::int64_t in_run;
-        const std::int64_t alive = read_run(letter, kk, in_run);
-        if (in_run > 0) {
-            best = length + in_run;
-            best_count_[0] = st_.p + (letter == 0 ? in_run : 0);
-            best_count_[1] = st_.q + (letter == 1 ? in_run : 0);
-        }
-        if (alive < k) break;
-        if (letter == 0) st_.commit_zeros(k);
-        else st_.commit_ones(k);
-        length += k;
+        if (!take_run(letter, static_cast<std::int64_t>(e - pos), length, best)) break;
         pos = e;
     }
     return best;
+}
+
+void TwoAxisGreedy::start_runs(int first) {
+    st_.reset();
+    runs_.clear();
+    first_letter_ = first;
+    best_count_[first] = 1;
+    best_count_[1 - first] = 0;
+}
+
+STEPZIP_DSS_INLINE bool TwoAxisGreedy::take_run(int letter, std::int64_t k, std::int64_t& length, std::int64_t& best) {
+    runs_.push_back(k);
+    const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
+    if (kk <= 0) return false;
+    std::int64_t in_run;
+    const std::int64_t alive = read_run(letter, kk, in_run);
+    if (in_run > 0) {
+        best = length + in_run;
+        best_count_[0] = st_.p + (letter == 0 ? in_run : 0);
+        best_count_[1] = st_.q + (letter == 1 ? in_run : 0);
+    }
+    if (alive < k) return false;
+    if (letter == 0) st_.commit_zeros(k);
+    else st_.commit_ones(k);
+    length += k;
+    return true;
+}
+
+// The Resume of every balanced word of kShortLetters letters, made once by
+// reading its leading runs as longest() reads them (the state depends on
+// the letters only, not on the profile or the step values); other words'
+// entries stay empty.
+const std::vector<TwoAxisGreedy::Resume>& TwoAxisGreedy::resume_table() {
+    static const std::vector<Resume> table = [] {
+        std::vector<Resume> t(std::size_t{1} << kShortLetters);
+        TwoAxisGreedy g(Profile::eval4);
+        for (unsigned w = 0; w < (1u << kShortLetters); ++w) {
+            if ((short_words().entry[w] & kBalanced) == 0) continue;
+            g.start_runs(static_cast<int>(w & 1u));
+            std::int64_t best = 1, length = 0;
+            // Every run but the last: a balanced word is a DSS at every
+            // prefix, so each run is read whole.
+            int at = 0;
+            while (true) {
+                const int letter = static_cast<int>((w >> at) & 1u);
+                int e = at + 1;
+                while (e < kShortLetters && static_cast<int>((w >> e) & 1u) == letter) ++e;
+                if (e == kShortLetters) break;
+                const bool whole = g.take_run(letter, e - at, length, best);
+                assert(whole);
+                (void)whole;
+                at = e;
+            }
+            Resume& r = t[w];
+            r.st = g.st_;
+            r.first_letter = g.first_letter_;
+            r.runs = g.runs_;
+            r.best = best;
+            r.best_count[0] = g.best_count_[0];
+            r.best_count[1] = g.best_count_[1];
+            r.length = length;
+        }
+        return t;
+    }();
+    return table;
 }
 
 namespace {

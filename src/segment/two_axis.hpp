@@ -10,7 +10,9 @@
 // steps into the kernel's run state (dss.hpp, as RunWord; no per-axis loops,
 // no profile switches) and decides each run with multiplications only; a
 // division is needed only on the run where the word stops being a digital
-// straight segment or where the run's last step is not a valid end. Its
+// straight segment or where the run's last step is not a valid end. A word
+// whose first kShortLetters letters are balanced starts from the state after
+// their leading runs, made once per such word (the same reading, tabled). Its
 // answers are those of RunSegment and of the letter-by-letter
 // SegmentRecognizer (tests/recognizer_test.cpp, tests/segmenter_two_axis_test.cpp).
 // Invariant: longest() returns RunSegment's (and SegmentRecognizer's) longest
@@ -47,6 +49,15 @@ private:
     // sets `best` to the largest valid prefix length of the run (0: none),
     // with multiplications only unless the run is cut.
     std::int64_t read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept;
+    // Reads a whole run of k letters `letter` (its step already admitted)
+    // after `length` letters: records it, moves `best` and best_count_ to
+    // the longest valid prefix; false when the word stops in it.
+    bool take_run(int letter, std::int64_t k, std::int64_t& length, std::int64_t& best);
+    // Starts the run reading at letter 0 (first letter `first`).
+    void start_runs(int first);
+    struct Resume;
+    static const std::vector<Resume>& resume_table();
+
 
     Profile profile_;
     bool eight_;
@@ -60,6 +71,15 @@ private:
     // The last longest() was decided by the short-word table: its letters.
     bool short_ = false;
     unsigned short_bits_ = 0;
+};
+
+// The state after a word's leading runs (all but its last), kept for the
+// balanced words of kShortLetters letters (two_axis.cpp).
+struct TwoAxisGreedy::Resume {
+    dss::RunState st;
+    int first_letter = 0;
+    std::vector<std::int64_t> runs;
+    std::int64_t best = 0, best_count[2] = {0, 0}, length = 0;
 };
 
 }  // namespace stepzip::detail
