@@ -1,7 +1,8 @@
-// The digital-straight-segment kernel under the three two-letter word
-// recognizers (not installed): WordRecognizer (a letter at a time, 128-bit),
-// RunWord and TwoAxisGreedy (a run at a time, 64-bit). Each keeps only what
-// differs: how a letter or a run arrives and what it answers.
+// The digital-straight-segment kernel under the two hull-based two-letter
+// word recognizers (not installed): WordRecognizer (a letter at a time,
+// 128-bit) and RunWord (a run at a time, 64-bit). Each keeps only what
+// differs: how a letter or a run arrives and what it answers. (The greedy
+// two-axis cut, two_axis.hpp, uses the arithmetic recognition instead.)
 //
 // A position (p, q) counts the zeros and ones read before a letter. The word
 // is a DSS while some slope lies strictly between lo = the largest slope from
@@ -23,7 +24,7 @@
 
 #include "stepzip/profile.hpp"
 
-// The run-at-a-time hot path (TwoAxisGreedy) keeps these inside its loop.
+// The run-at-a-time hot path (RunWord) keeps these inside its loop.
 #if defined(__GNUC__)
 #define STEPZIP_DSS_INLINE [[gnu::always_inline]] inline
 #else
@@ -51,38 +52,9 @@ bool less(std::int64_t n1, std::int64_t d1, std::int64_t n2, std::int64_t d2) {
     return W(n1) * d2 < W(n2) * d1;
 }
 
-/// A hull as a stack of vertices: std::vector's operations that the hull
-/// code uses, with the size kept apart from the storage, which only grows
-/// (a pop is a decrement, a push a store: no per-push capacity arithmetic
-/// on pointers). The run-at-a-time state keeps its hulls in these.
-template <class P>
-class HullStack {
-public:
-    std::size_t size() const noexcept { return n_; }
-    bool empty() const noexcept { return n_ == 0; }
-    void clear() noexcept { n_ = 0; }
-    /// Precondition: z <= size() (the hull code only pops).
-    void resize(std::size_t z) noexcept { n_ = z; }
-    const P& operator[](std::size_t i) const noexcept { return store_[i]; }
-    /// Becomes a copy of o's vertices (no allocation once the storage holds them).
-    void assign(const HullStack& o) {
-        if (store_.size() < o.n_) store_.resize(o.store_.size());
-        std::copy(o.store_.begin(), o.store_.begin() + static_cast<std::ptrdiff_t>(o.n_), store_.begin());
-        n_ = o.n_;
-    }
-    STEPZIP_DSS_INLINE void push_back(P c) {
-        if (n_ == store_.size()) store_.resize(std::max<std::size_t>(16, 2 * n_));
-        store_[n_++] = c;
-    }
-
-private:
-    std::vector<P> store_;  // its size is the capacity
-    std::size_t n_ = 0;
-};
-
 /// Appends c to the lower hull of the 0-positions.
-template <class W, class P, class H>
-STEPZIP_DSS_INLINE void push_lower(H& h, P c) {
+template <class W, class P>
+STEPZIP_DSS_INLINE void push_lower(std::vector<P>& h, P c) {
     std::size_t z = h.size();
     while (z >= 2 && cross<W>(h[z - 2], h[z - 1], c) <= 0) --z;
     h.resize(z);
@@ -91,8 +63,8 @@ STEPZIP_DSS_INLINE void push_lower(H& h, P c) {
 
 /// Appends c to the upper hull of the 1-positions (one point per column:
 /// a later point in the same column replaces the earlier one).
-template <class W, class P, class H>
-STEPZIP_DSS_INLINE void push_upper(H& h, P c) {
+template <class W, class P>
+STEPZIP_DSS_INLINE void push_upper(std::vector<P>& h, P c) {
     std::size_t z = h.size();
     if (z > 0 && h[z - 1].p == c.p) --z;
     while (z >= 2 && cross<W>(h[z - 2], h[z - 1], c) >= 0) --z;
@@ -102,8 +74,8 @@ STEPZIP_DSS_INLINE void push_upper(H& h, P c) {
 
 /// The smallest slope n/d from a vertex of the upper hull `h` strictly left
 /// of c to c (a new 0 at c: the bound hi). False when there is none.
-template <class W, class P, class H>
-STEPZIP_DSS_INLINE bool min_slope_to(const H& h, P c, std::int64_t& n, std::int64_t& d) {
+template <class W, class P>
+STEPZIP_DSS_INLINE bool min_slope_to(const std::vector<P>& h, P c, std::int64_t& n, std::int64_t& d) {
     std::size_t m = h.size();
     if (m > 0 && h[m - 1].p == c.p) --m;
     if (m == 0) return false;
@@ -120,8 +92,8 @@ STEPZIP_DSS_INLINE bool min_slope_to(const H& h, P c, std::int64_t& n, std::int6
 
 /// The largest slope n/d from a vertex of the lower hull `h` (all strictly
 /// left of c) to c (a new 1 at c: the bound lo). False when `h` is empty.
-template <class W, class P, class H>
-STEPZIP_DSS_INLINE bool max_slope_to(const H& h, P c, std::int64_t& n, std::int64_t& d) {
+template <class W, class P>
+STEPZIP_DSS_INLINE bool max_slope_to(const std::vector<P>& h, P c, std::int64_t& n, std::int64_t& d) {
     if (h.empty()) return false;
     std::size_t a = 0, b = h.size() - 1;
     while (a < b) {
@@ -134,7 +106,7 @@ STEPZIP_DSS_INLINE bool max_slope_to(const H& h, P c, std::int64_t& n, std::int6
     return true;
 }
 
-// Run-at-a-time state (RunWord, TwoAxisGreedy): 64-bit arithmetic. Every
+// Run-at-a-time state (RunWord): 64-bit arithmetic. Every
 // coordinate, numerator and denominator is at most the word length + 1 <=
 // kMaxSegmentTotal + 1 = 2^30 + 1, so every product of two of them, and
 // every sum or difference of two products, fits in 64 bits.
@@ -160,22 +132,10 @@ struct Frac {
 /// Invariant: (lo, hi) is exactly the set of slopes that admit a phase for
 /// the word read so far; the hulls change only by a run's end points.
 struct RunState {
-    HullStack<Pt> zeros_hull;  // lower hull of the 0-positions
-    HullStack<Pt> ones_hull;   // upper hull of the 1-positions (top point per column)
+    std::vector<Pt> zeros_hull;  // lower hull of the 0-positions
+    std::vector<Pt> ones_hull;   // upper hull of the 1-positions (top point per column)
     Frac lo{-1, 1}, hi{1, 0}, r{0, 1}, s{1, 0};
     std::int64_t p = 0, q = 0;  // zeros and ones read
-
-    /// Becomes a copy of o (its hulls copied vertex by vertex).
-    void assign(const RunState& o) {
-        zeros_hull.assign(o.zeros_hull);
-        ones_hull.assign(o.ones_hull);
-        lo = o.lo;
-        hi = o.hi;
-        r = o.r;
-        s = o.s;
-        p = o.p;
-        q = o.q;
-    }
 
     void reset() noexcept {
         zeros_hull.clear();
@@ -249,7 +209,7 @@ struct RunState {
     /// the run sees its last zero at a smaller slope); its first zero is kept
     /// on the hull as the letter-by-letter hull keeps it.
     STEPZIP_DSS_INLINE void commit_zeros(std::int64_t k) {
-        if (k >= 2) push_lower<wide>(zeros_hull, Pt{p, q});
+        if (k >= 2) push_lower<wide>(zeros_hull, {p, q});
         const Pt c{p + k - 1, q};
         std::int64_t n, d;
         if (min_slope_to<wide>(ones_hull, c, n, d) && wide(n) * hi.d < wide(hi.n) * d) hi = {n, d};

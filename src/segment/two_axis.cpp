@@ -7,9 +7,6 @@
 
 namespace stepzip::detail {
 
-using dss::floor_div;
-using dss::wide;
-
 namespace {
 // Words of up to kShortLetters letters are decided by a table made once, on
 // first use (about 10^6 simple operations: too many for some compilers'
@@ -69,33 +66,125 @@ const ShortWords& short_words() {
 inline int letter_of(Step s, bool eight) {
     return eight ? ((s & 0x5u) == 0x5u ? 1 : 0) : ((s & 1u) != 0 ? 0 : 1);
 }
+
+// Debled-Rennesson's arithmetic recognition of a 4-connected digital
+// straight segment (Debled-Rennesson & Reveilles 1995), on the lattice path
+// whose letter 0 is a step in x and letter 1 a step in y. After each letter
+// the path's points M_0..M_n lie in the strip mu <= a*x - b*y <= mu + a + b - 1
+// of its minimal characteristics (a, b, mu); U_f, U_l (L_f, L_l) are the
+// first and last points on its upper (lower) edge. A letter whose point
+// leaves the strip by one turns the strip about the opposite first leaning
+// point; by more, the word is no longer a digital straight segment.
+//
+// The prefix M_0..M_n is exact (the rule with counts (P, Q) = M_n draws it)
+// iff the values f(M) = Q*x - P*y over its points span at most P + Q - 1
+// (the short-word table's test). The strip's lines of that slope are bounded
+// by the four leaning points alone (the preimage of a digital straight
+// segment is the polygon they define: Dorst & Smeulders 1984; f is largest
+// at a lower one, smallest at an upper one), so the span over them and
+// M_0, M_n (where f is 0) decides it. The f of each leaning point moves by
+// one of its coordinates per letter (no products); a new leaning point at
+// M_n has f = 0. Complexity: O(1) per letter, a product only where the
+// strip turns.
+struct Strip {
+    struct Lean {
+        std::int64_t x, y, f;  // a leaning point, f there for (P, Q) = M_n
+    };
+    std::int64_t mx, my;  // M_n
+    std::int64_t a, b, mu, r;  // the strip; r = a*mx - b*my
+    Lean uf, ul, lf, ll;
+
+    // M_0 and the first letter.
+    void start(int first) {
+        mx = first == 0 ? 1 : 0;
+        my = first;
+        a = first;
+        b = 1 - first;
+        mu = r = 0;
+        uf = lf = {0, 0, 0};
+        ul = ll = {mx, my, 0};
+    }
+
+    // The strip turned about leaning point c (to M_n); r becomes M_n's.
+    void turn(const Lean& c) {
+        a = my - c.y;
+        b = mx - c.x;
+        r = a * mx - b * my;
+    }
+
+    // Appends a letter; false when the word stops being a digital straight
+    // segment (the strip is then no longer meaningful).
+    STEPZIP_DSS_INLINE bool add(int letter) {
+        // A 0 moves x (f falls by each point's y), a 1 moves y (f rises by x).
+        const bool y = letter != 0;
+        mx += y ? 0 : 1;
+        my += y ? 1 : 0;
+        r += y ? -b : a;
+        uf.f += y ? uf.x : -uf.y;
+        ul.f += y ? ul.x : -ul.y;
+        lf.f += y ? lf.x : -lf.y;
+        ll.f += y ? ll.x : -ll.y;
+        const std::int64_t w = a + b;
+        const Lean m{mx, my, 0};
+        if (r >= mu && r < mu + w) {
+            if (r == mu) ul = m;
+            if (r == mu + w - 1) ll = m;
+        } else if (r == mu - 1) {  // above by one: turn about U_f
+            ul = m;
+            lf = ll;
+            turn(uf);
+            mu = r;
+        } else if (r == mu + w) {  // below by one: turn about L_f
+            ll = m;
+            uf = ul;
+            turn(lf);
+            mu = r - (a + b) + 1;
+        } else {
+            return false;
+        }
+        return true;
+    }
+
+    // The word read so far is exact.
+    bool exact() const {
+        const std::int64_t hi = std::max(std::max(lf.f, ll.f), std::int64_t{0});
+        const std::int64_t lo = std::min(std::min(uf.f, ul.f), std::int64_t{0});
+        return hi - lo < mx + my;
+    }
+};
+
+// The strip after each balanced word of kShortLetters letters (the words
+// that longest() reads on from): an index by word, the strips.
+struct Resume {
+    std::uint8_t index[1u << kShortLetters];
+    std::vector<Strip> strip;
+};
+
+const Resume& resume_table() {
+    static const Resume table = [] {
+        Resume t{};
+        const ShortWords& sw = short_words();
+        for (unsigned w = 0; w < (1u << kShortLetters); ++w) {
+            if ((sw.entry[w] & kBalanced) == 0) continue;
+            Strip st;
+            st.start(static_cast<int>(w & 1u));
+            for (int k = 1; k < kShortLetters; ++k) {
+                const bool dss = st.add(static_cast<int>((w >> k) & 1u));
+                assert(dss);  // a balanced word is a digital straight segment
+                (void)dss;
+            }
+            assert(t.strip.size() < 256);
+            t.index[w] = static_cast<std::uint8_t>(t.strip.size());
+            t.strip.push_back(st);
+        }
+        return t;
+    }();
+    return table;
+}
 }  // namespace
 
 TwoAxisGreedy::TwoAxisGreedy(Profile p) : profile_(p), eight_(profile_eight_connected(p)) {
     assert(p != Profile::patent);
-}
-
-// A run of k letters (see RunWord::probe): the largest valid prefix is the
-// largest count x within the upper bounds, if it passes the lower one; the
-// whole run is tried first by multiplications, a division only if it fails.
-STEPZIP_DSS_INLINE std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t alive = st_.alive(letter, k);
-    best = 0;
-    if (alive == 0) return 0;
-    const std::int64_t x0 = letter == 0 ? st_.p : st_.q;
-    if ((letter == 0 ? st_.q : st_.p) == 0) {
-        best = alive;
-        return alive;
-    }
-    const dss::RunState::Bounds b = st_.bounds(letter);
-    wide x = x0 + alive;
-    if (!(b.b1 * x < b.a1 && b.b2 * x < b.a2)) {
-        if (b.b1 > 0) x = std::min(x, floor_div(b.a1 - 1, b.b1));
-        if (b.b2 > 0) x = std::min(x, floor_div(b.a2 - 1, b.b2));
-        if (x - x0 < 1) return alive;
-    }
-    if (x * b.c > b.e) best = x - x0;
-    return alive;
 }
 
 // The first step of a letter in a segment: signs are fixed per letter, and
@@ -112,6 +201,37 @@ inline bool admit(Step (&value)[2], Step s, int letter, bool eight) {
     value[letter] = s;
     return true;
 }
+
+namespace {
+// The longest exact prefix of the first n > kShortLetters steps, whose first
+// kShortLetters letters left `from` and had `best` as their longest exact
+// prefix; `value` holds the letters' step values (admit). kEight: the
+// profile is 8-connected.
+template <bool kEight>
+std::int64_t read_letters(Step (&value_)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
+                          std::int64_t& best_ones) {
+    // The step values in locals, the strip in registers.
+    Step v0 = value_[0], v1 = value_[1];
+    Strip strip = from;
+    std::int64_t ones = best_ones;
+    for (std::size_t i = kShortLetters; i < n; ++i) {
+        const Step s = st[i];
+        const int letter = letter_of(s, kEight);
+        if (s != (letter != 0 ? v1 : v0)) {
+            if (!admit(value_, s, letter, kEight)) break;
+            v0 = value_[0];
+            v1 = value_[1];
+        }
+        if (!strip.add(letter)) break;
+        if (strip.exact()) {
+            best = static_cast<std::int64_t>(i + 1);
+            ones = strip.my;
+        }
+    }
+    best_ones = ones;
+    return best;
+}
+}  // namespace
 
 std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
     const std::size_t n = steps.size();
@@ -133,100 +253,20 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
     if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
         const unsigned valid = e & ((2u << i) - 1u) & ~1u;
         const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
-        const unsigned low = bits & ((1u << m) - 1u);
-        short_bits_ = bits;
-        short_ = true;
-        best_count_[1] = __builtin_popcount(low);
-        best_count_[0] = m - best_count_[1];
+        best_length_ = m;
+        best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
         return m;
     }
-    // A balanced word of kShortLetters letters: the state after its
-    // leading runs (all but the last, which may go on past them) from the
-    // table, then the runs from there.
-    short_ = false;
-    const Resume& r = resume_table()[bits];
-    st_.assign(r.st);
-    runs_.assign(r.runs.begin(), r.runs.end());
-    first_letter_ = r.first_letter;
-    std::int64_t best = r.best, length = r.length;
-    best_count_[0] = r.best_count[0];
-    best_count_[1] = r.best_count[1];
-    auto pos = static_cast<std::size_t>(length);
-    while (pos < n) {
-        const Step s = st[pos];
-        const int letter = letter_of(s, eight_);
-        if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
-        std::size_t e = pos + 1;
-        while (e < n && st[e] == s) ++e;
-        if (!take_run(letter, static_cast<std::int64_t>(e - pos), length, best)) break;
-        pos = e;
-    }
-    return best;
-}
-
-void TwoAxisGreedy::start_runs(int first) {
-    st_.reset();
-    runs_.clear();
-    first_letter_ = first;
-    best_count_[first] = 1;
-    best_count_[1 - first] = 0;
-}
-
-STEPZIP_DSS_INLINE bool TwoAxisGreedy::take_run(int letter, std::int64_t k, std::int64_t& length, std::int64_t& best) {
-    runs_.push_back(k);
-    const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
-    if (kk <= 0) return false;
-    std::int64_t in_run;
-    const std::int64_t alive = read_run(letter, kk, in_run);
-    if (in_run > 0) {
-        best = length + in_run;
-        best_count_[0] = st_.p + (letter == 0 ? in_run : 0);
-        best_count_[1] = st_.q + (letter == 1 ? in_run : 0);
-    }
-    if (alive < k) return false;
-    if (letter == 0) st_.commit_zeros(k);
-    else st_.commit_ones(k);
-    length += k;
-    return true;
-}
-
-// The Resume of every balanced word of kShortLetters letters, made once by
-// reading its leading runs as longest() reads them (the state depends on
-// the letters only, not on the profile or the step values); other words'
-// entries stay empty.
-const std::vector<TwoAxisGreedy::Resume>& TwoAxisGreedy::resume_table() {
-    static const std::vector<Resume> table = [] {
-        std::vector<Resume> t(std::size_t{1} << kShortLetters);
-        TwoAxisGreedy g(Profile::eval4);
-        for (unsigned w = 0; w < (1u << kShortLetters); ++w) {
-            if ((short_words().entry[w] & kBalanced) == 0) continue;
-            g.start_runs(static_cast<int>(w & 1u));
-            std::int64_t best = 1, length = 0;
-            // Every run but the last: a balanced word is a DSS at every
-            // prefix, so each run is read whole.
-            int at = 0;
-            while (true) {
-                const int letter = static_cast<int>((w >> at) & 1u);
-                int e = at + 1;
-                while (e < kShortLetters && static_cast<int>((w >> e) & 1u) == letter) ++e;
-                if (e == kShortLetters) break;
-                const bool whole = g.take_run(letter, e - at, length, best);
-                assert(whole);
-                (void)whole;
-                at = e;
-            }
-            Resume& r = t[w];
-            r.st = g.st_;
-            r.first_letter = g.first_letter_;
-            r.runs = g.runs_;
-            r.best = best;
-            r.best_count[0] = g.best_count_[0];
-            r.best_count[1] = g.best_count_[1];
-            r.length = length;
-        }
-        return t;
-    }();
-    return table;
+    // Longer words: the arithmetic recognition (Strip) from the strip of
+    // the first kShortLetters letters, a letter at a time.
+    const std::size_t lim_all = std::min<std::size_t>(n, static_cast<std::size_t>(kMaxSegmentTotal));
+    const Resume& t = resume_table();
+    const int m = 31 - __builtin_clz(e & ((2u << kShortLetters) - 2u));
+    best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
+    const Strip& from = t.strip[t.index[bits]];
+    best_length_ = eight_ ? read_letters<true>(value_, st, lim_all, from, m, best_ones_)
+                          : read_letters<false>(value_, st, lim_all, from, m, best_ones_);
+    return best_length_;
 }
 
 namespace {
@@ -237,24 +277,18 @@ void add_moves(Point& d, Step s, std::int64_t n) {
 }
 }  // namespace
 
-std::optional<Segment> TwoAxisGreedy::fit(std::int64_t m) const {
+std::optional<Segment> TwoAxisGreedy::fit(std::span<const Step> steps, std::int64_t m) const {
+    if (m < 1 || static_cast<std::size_t>(m) > steps.size()) return std::nullopt;
+    const Step* st = steps.data();
     // Letter counts of the prefix (a, b) = (#zeros, #ones): the rule's
     // counts both for eval4 (|dx|, |dy|) and for the minor axis of the
     // 8-connected profiles (L - S, S).
-    std::int64_t cnt[2] = {best_count_[0], best_count_[1]};
-    if (m != cnt[0] + cnt[1]) {
-        if (short_) return std::nullopt;
-        cnt[0] = cnt[1] = 0;
-        std::int64_t left = m;
-        int letter = first_letter_;
-        for (std::size_t i = 0; left > 0 && i < runs_.size(); ++i, letter ^= 1) {
-            const std::int64_t k = std::min(left, runs_[i]);
-            cnt[letter] += k;
-            left -= k;
-        }
-        if (left > 0) return std::nullopt;
+    std::int64_t b = best_ones_;
+    if (m != best_length_) {
+        b = 0;
+        for (std::int64_t i = 0; i < m; ++i) b += letter_of(st[i], eight_);
     }
-    const std::int64_t a = cnt[0], b = cnt[1];
+    const std::int64_t a = m - b;
     Segment seg;
     if (a > 0) add_moves(seg.delta, value_[0], a);
     if (b > 0) add_moves(seg.delta, value_[1], b);
@@ -264,32 +298,17 @@ std::optional<Segment> TwoAxisGreedy::fit(std::int64_t m) const {
         seg.phase[0] = default_phase(profile_, fa, b);
         return seg;
     }
-    // F0 in [max over 0-positions of p*b - q*a, min over 1-positions); only
-    // a run's last letter bounds it (see fit.cpp, word_phases).
+    // F0 in [max over 0-positions of p*b - q*a, min over 1-positions) (see
+    // fit.cpp, word_phases); v = p*b - q*a moves by b at a 0, by -a at a 1.
     constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
-    std::int64_t lo = -kInf, hi = kInf, p = 0, q = 0, left = m;
-    if (short_) {
-        for (std::int64_t i = 0; i < m; ++i) {
-            if ((short_bits_ >> i) & 1u) {
-                hi = std::min(hi, p * b - q * a);
-                ++q;
-            } else {
-                lo = std::max(lo, p * b - q * a);
-                ++p;
-            }
-        }
-        left = 0;
-    }
-    int letter = first_letter_;
-    for (std::size_t i = 0; left > 0; ++i, letter ^= 1) {
-        const std::int64_t k = std::min(left, runs_[i]);
-        left -= k;
-        if (letter == 0) {
-            lo = std::max(lo, (p + k - 1) * b - q * a);
-            p += k;
+    std::int64_t lo = -kInf, hi = kInf, v = 0;
+    for (std::int64_t i = 0; i < m; ++i) {
+        if (letter_of(st[i], eight_) != 0) {
+            hi = std::min(hi, v);
+            v -= a;
         } else {
-            hi = std::min(hi, p * b - (q + k - 1) * a);
-            q += k;
+            lo = std::max(lo, v);
+            v += b;
         }
     }
     const auto f = dss::pick_phase(profile_, fa, b, lo, hi);
