@@ -87,12 +87,14 @@ inline int letter_of(Step s, bool eight) {
 // M_n has f = 0. Complexity: O(1) per letter, a product only where the
 // strip turns.
 struct Strip {
-    struct Lean {
-        std::int64_t x, y, f;  // a leaning point, f there for (P, Q) = M_n
-    };
     std::int64_t mx, my;  // M_n
-    std::int64_t a, b, mu, r;  // the strip; r = a*mx - b*my
-    Lean uf, ul, lf, ll;
+    std::int64_t a, b;    // the strip's direction (b, a)
+    std::int64_t r, rel;  // r = a*mx - b*my at M_n, rel = r - mu
+    // The first leaning points, the last ones as k * (b, a) past them (the
+    // points of an edge are one period apart), and f at U_f, L_f for
+    // (P, Q) = M_n; f at U_f + k * (b, a) is f(U_f) - k * r.
+    std::int64_t ufx, ufy, lfx, lfy, ku, kl;
+    std::int64_t fuf, flf;
 
     // M_0 and the first letter.
     void start(int first) {
@@ -100,16 +102,10 @@ struct Strip {
         my = first;
         a = first;
         b = 1 - first;
-        mu = r = 0;
-        uf = lf = {0, 0, 0};
-        ul = ll = {mx, my, 0};
-    }
-
-    // The strip turned about leaning point c (to M_n); r becomes M_n's.
-    void turn(const Lean& c) {
-        a = my - c.y;
-        b = mx - c.x;
-        r = a * mx - b * my;
+        r = rel = 0;
+        ufx = ufy = lfx = lfy = 0;
+        ku = kl = 1;
+        fuf = flf = 0;
     }
 
     // Appends a letter; false when the word stops being a digital straight
@@ -119,26 +115,35 @@ struct Strip {
         const bool y = letter != 0;
         mx += y ? 0 : 1;
         my += y ? 1 : 0;
-        r += y ? -b : a;
-        uf.f += y ? uf.x : -uf.y;
-        ul.f += y ? ul.x : -ul.y;
-        lf.f += y ? lf.x : -lf.y;
-        ll.f += y ? ll.x : -ll.y;
+        const std::int64_t dr = y ? -b : a;
+        r += dr;
+        rel += dr;
+        fuf += y ? ufx : -ufy;
+        flf += y ? lfx : -lfy;
         const std::int64_t w = a + b;
-        const Lean m{mx, my, 0};
-        if (r >= mu && r < mu + w) {
-            if (r == mu) ul = m;
-            if (r == mu + w - 1) ll = m;
-        } else if (r == mu - 1) {  // above by one: turn about U_f
-            ul = m;
-            lf = ll;
-            turn(uf);
-            mu = r;
-        } else if (r == mu + w) {  // below by one: turn about L_f
-            ll = m;
-            uf = ul;
-            turn(lf);
-            mu = r - (a + b) + 1;
+        if (rel >= 0 && rel < w) {
+            ku += rel == 0 ? 1 : 0;      // M_n is the next upper leaning point
+            kl += rel == w - 1 ? 1 : 0;  // the next lower one
+        } else if (rel == -1) {  // above by one: turn about U_f (U_l = M_n, L_f = old L_l)
+            flf -= kl * r;
+            lfx += kl * b;
+            lfy += kl * a;
+            a = my - ufy;
+            b = mx - ufx;
+            r = a * mx - b * my;
+            rel = 0;
+            ku = 1;
+            kl = 0;
+        } else if (rel == w) {  // below by one: turn about L_f (L_l = M_n, U_f = old U_l)
+            fuf -= ku * r;
+            ufx += ku * b;
+            ufy += ku * a;
+            a = my - lfy;
+            b = mx - lfx;
+            r = a * mx - b * my;
+            rel = a + b - 1;
+            ku = 0;
+            kl = 1;
         } else {
             return false;
         }
@@ -147,8 +152,8 @@ struct Strip {
 
     // The word read so far is exact.
     bool exact() const {
-        const std::int64_t hi = std::max(std::max(lf.f, ll.f), std::int64_t{0});
-        const std::int64_t lo = std::min(std::min(uf.f, ul.f), std::int64_t{0});
+        const std::int64_t hi = std::max(flf + std::max(-kl * r, std::int64_t{0}), std::int64_t{0});
+        const std::int64_t lo = std::min(fuf + std::min(-ku * r, std::int64_t{0}), std::int64_t{0});
         return hi - lo < mx + my;
     }
 };
