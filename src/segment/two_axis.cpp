@@ -108,6 +108,20 @@ struct Strip {
         fuf = flf = 0;
     }
 
+    // A first leaning point (x, y, its f) moved to the last one, k periods on.
+    void to_last(std::int64_t& f, std::int64_t& x, std::int64_t& y, std::int64_t k) const {
+        f -= k * r;
+        x += k * b;
+        y += k * a;
+    }
+
+    // The strip turned about the first leaning point (x, y) to M_n.
+    void turn(std::int64_t x, std::int64_t y) {
+        a = my - y;
+        b = mx - x;
+        r = a * mx - b * my;
+    }
+
     // Appends a letter; false when the word stops being a digital straight
     // segment (the strip is then no longer meaningful).
     STEPZIP_DSS_INLINE bool add(int letter) {
@@ -125,22 +139,14 @@ struct Strip {
             ku += rel == 0 ? 1 : 0;      // M_n is the next upper leaning point
             kl += rel == w - 1 ? 1 : 0;  // the next lower one
         } else if (rel == -1) {  // above by one: turn about U_f (U_l = M_n, L_f = old L_l)
-            flf -= kl * r;
-            lfx += kl * b;
-            lfy += kl * a;
-            a = my - ufy;
-            b = mx - ufx;
-            r = a * mx - b * my;
+            to_last(flf, lfx, lfy, kl);
+            turn(ufx, ufy);
             rel = 0;
             ku = 1;
             kl = 0;
         } else if (rel == w) {  // below by one: turn about L_f (L_l = M_n, U_f = old U_l)
-            fuf -= ku * r;
-            ufx += ku * b;
-            ufy += ku * a;
-            a = my - lfy;
-            b = mx - lfx;
-            r = a * mx - b * my;
+            to_last(fuf, ufx, ufy, ku);
+            turn(lfx, lfy);
             rel = a + b - 1;
             ku = 0;
             kl = 1;
