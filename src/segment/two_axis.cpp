@@ -82,10 +82,11 @@ inline int letter_of(Step s, bool eight) {
 // by the four leaning points alone (the preimage of a digital straight
 // segment is the polygon they define: Dorst & Smeulders 1984; f is largest
 // at a lower one, smallest at an upper one), so the span over them and
-// M_0, M_n (where f is 0) decides it. The f of each leaning point moves by
-// one of its coordinates per letter (no products); a new leaning point at
-// M_n has f = 0. Complexity: O(1) per letter, a product only where the
-// strip turns.
+// M_0, M_n (where f is 0) decides it. The points of an edge are one period
+// (b, a) apart: the last leaning points are kept as counts of periods past
+// the first ones, whose f moves by one of their coordinates per letter.
+// Complexity: O(1) per letter (two products for the test, a few more
+// where the strip turns).
 struct Strip {
     std::int64_t mx, my;  // M_n
     std::int64_t a, b;    // the strip's direction (b, a)

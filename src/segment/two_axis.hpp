@@ -10,13 +10,12 @@
 // 12 letters by a table and longer ones by the arithmetic recognition of
 // digital straight segments (Debled-Rennesson & Reveilles 1995: the strip of
 // the minimal characteristics and its four extreme leaning points), a letter
-// at a time with additions only: no hulls, no per-axis loops, no profile
-// switches. Its answers are those of RunSegment and of the letter-by-letter
+// at a time with a few additions and products: no hulls, no per-axis loops,
+// no profile switches. Its answers are those of RunSegment and of the letter-by-letter
 // SegmentRecognizer (tests/recognizer_test.cpp,
 // tests/segmenter_two_axis_test.cpp).
 // Invariant: longest() returns RunSegment's (and SegmentRecognizer's) longest
-// exact prefix. Complexity: O(1) per letter (a product only where the strip
-// turns); fit() is O(m).
+// exact prefix. Complexity: O(1) per letter; fit() is O(m).
 #pragma once
 
 #include <cstdint>
