@@ -86,7 +86,10 @@ inline int letter_of(Step s, bool eight) {
 // (b, a) apart: the last leaning points are kept as counts of periods past
 // the first ones, whose f moves by one of their coordinates per letter.
 // Complexity: O(1) per letter (two products for the test, a few more
-// where the strip turns).
+// where the strip turns). Range: M_0 (r = 0) is in the strip, so |r| <= a + b
+// at every point, and with at most kMaxSegmentTotal = 2^30 letters every
+// coordinate, count of periods and f fits, products included, in 64 bits.
+static_assert(kMaxSegmentTotal <= (std::int64_t{1} << 30));
 struct Strip {
     std::int64_t mx, my;  // M_n
     std::int64_t a, b;    // the strip's direction (b, a)
@@ -217,22 +220,22 @@ inline bool admit(Step (&value)[2], Step s, int letter, bool eight) {
 namespace {
 // The longest exact prefix of the first n > kShortLetters steps, whose first
 // kShortLetters letters left `from` and had `best` as their longest exact
-// prefix; `value` holds the letters' step values (admit). kEight: the
-// profile is 8-connected.
+// prefix (`best_ones` ones in it, updated with it); `value` holds the
+// letters' step values (admit). kEight: the profile is 8-connected.
 template <bool kEight>
-std::int64_t read_letters(Step (&value_)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
+std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
                           std::int64_t& best_ones) {
     // The step values in locals, the strip in registers.
-    Step v0 = value_[0], v1 = value_[1];
+    Step v0 = value[0], v1 = value[1];
     Strip strip = from;
     std::int64_t ones = best_ones;
     for (std::size_t i = kShortLetters; i < n; ++i) {
         const Step s = st[i];
         const int letter = letter_of(s, kEight);
         if (s != (letter != 0 ? v1 : v0)) {
-            if (!admit(value_, s, letter, kEight)) break;
-            v0 = value_[0];
-            v1 = value_[1];
+            if (!admit(value, s, letter, kEight)) break;
+            v0 = value[0];
+            v1 = value[1];
         }
         if (!strip.add(letter)) break;
         if (strip.exact()) {
