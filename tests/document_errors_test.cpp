@@ -119,6 +119,20 @@ TEST(FormatNames, RoundTrip) {
     EXPECT_FALSE(parse_format("gcode").has_value());
 }
 
+// A head of Freeman text with one byte replaced, at every position of a
+// head longer than two 16-byte lanes, by every byte value: binary exactly
+// when the byte is a control other than TAB, LF and CR, or DEL.
+TEST(DetectFormat, ABinaryByteAnywhereMakesStepBytes) {
+    const std::string text = "0 0 0123456701234567\n10 -3 7654321076543210\n";
+    for (std::size_t at = 0; at < text.size(); ++at)
+        for (int c = 0; c < 256; ++c) {
+            std::string head = text;
+            head[at] = static_cast<char>(c);
+            const bool binary = (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F;
+            EXPECT_EQ(detect_format(head) == InputFormat::steps, binary) << "byte " << c << " at " << at;
+        }
+}
+
 TEST(DetectFormat, FromTheFirstBytes) {
     EXPECT_EQ(detect_format(""), InputFormat::freeman);
     EXPECT_EQ(detect_format("# only a comment\n"), InputFormat::freeman);

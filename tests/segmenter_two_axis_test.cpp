@@ -4,6 +4,7 @@
 // to 14 letters in every sign combination and on random chains.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <span>
 #include <vector>
@@ -158,6 +159,42 @@ TEST(TwoAxisGreedy, RandomChainsMatchLetterByLetter) {
             check_chain(p, random_chain(rng, p, 4000), rep < 2);
             if (::testing::Test::HasFatalFailure()) return;
         }
+}
+
+// Digitized lines of up to 600 letters with one letter flipped (a point
+// just off the strip, or far off it), in both orders and both letter
+// assignments: the strip turns and leaning points move letter by letter,
+// and the longest exact prefix ends anywhere. Compared at several starts.
+TEST(TwoAxisGreedy, PerturbedLinesMatchLetterByLetter) {
+    std::mt19937_64 rng(31);
+    for (Profile p : kLinear) {
+        const auto [zero, one] = letters(p, static_cast<int>(rng() % 4));
+        const GreedySegmenter greedy(p, 2);
+        std::vector<Step> steps;
+        for (int rep = 0; rep < 1500; ++rep) {
+            const std::int64_t a = 1 + static_cast<std::int64_t>(rng() % 300), b = static_cast<std::int64_t>(rng() % 300);
+            std::int64_t acc = static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(a + b));
+            const std::size_t len = 13 + rng() % 600;
+            std::vector<int> w;
+            for (std::size_t i = 0; i < len; ++i) {
+                acc += b;
+                const bool y = acc >= a + b;
+                if (y) acc -= a + b;
+                w.push_back(y ? 1 : 0);
+            }
+            w[rng() % len] ^= 1;
+            if (rng() % 2) std::reverse(w.begin(), w.end());
+            const int swap = static_cast<int>(rng() % 2);
+            steps.clear();
+            for (int c : w) steps.push_back((c ^ swap) ? one : zero);
+            for (int t = 0; t < 3; ++t) {
+                const std::size_t at = t == 0 ? 0 : rng() % len;
+                const auto rest = std::span<const Step>(steps).subspan(at);
+                ASSERT_EQ(greedy.longest(rest), longest_letter_by_letter(p, rest))
+                    << profile_name(p) << " line " << a << "/" << b << " start " << at;
+            }
+        }
+    }
 }
 
 // Long exact lines: one segment each, with the phase they were drawn at

@@ -107,8 +107,20 @@ public:
         if (at[static_cast<std::size_t>(s - 1)] != tick(s - 1) || at[0] != tick(0) ||
             at[static_cast<std::size_t>(s / 2)] != tick(s / 2))
             return false;
-        for (std::int64_t j = 1; j < s - 1; ++j)
-            if (at[static_cast<std::size_t>(j)] != tick(j)) return false;
+        // The ticks between, without a division each: (j * n + f0 + s) / s
+        // moves by n / s per letter, and by one more when the remainder
+        // (f0 + s >= 0, so the quotients are floors) passes s.
+        const std::int64_t step = n / s, extra = n % s;
+        std::int64_t t = tick(0), rem = (f0 + s) % s;
+        for (std::int64_t j = 1; j < s - 1; ++j) {
+            t += step;
+            rem += extra;
+            if (rem >= s) {
+                rem -= s;
+                ++t;
+            }
+            if (at[static_cast<std::size_t>(j)] != t) return false;
+        }
         return true;
     }
 

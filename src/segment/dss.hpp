@@ -1,7 +1,8 @@
-// The digital-straight-segment kernel under the three two-letter word
-// recognizers (not installed): WordRecognizer (a letter at a time, 128-bit),
-// RunWord and TwoAxisGreedy (a run at a time, 64-bit). Each keeps only what
-// differs: how a letter or a run arrives and what it answers.
+// The digital-straight-segment kernel under the two hull-based two-letter
+// word recognizers (not installed): WordRecognizer (a letter at a time,
+// 128-bit) and RunWord (a run at a time, 64-bit). Each keeps only what
+// differs: how a letter or a run arrives and what it answers. (The greedy
+// two-axis cut, two_axis.hpp, uses the arithmetic recognition instead.)
 //
 // A position (p, q) counts the zeros and ones read before a letter. The word
 // is a DSS while some slope lies strictly between lo = the largest slope from
@@ -23,7 +24,7 @@
 
 #include "stepzip/profile.hpp"
 
-// The run-at-a-time hot path (TwoAxisGreedy) keeps these inside its loop.
+// The run-at-a-time hot path (RunWord) keeps these inside its loop.
 #if defined(__GNUC__)
 #define STEPZIP_DSS_INLINE [[gnu::always_inline]] inline
 #else
@@ -105,7 +106,7 @@ STEPZIP_DSS_INLINE bool max_slope_to(const std::vector<P>& h, P c, std::int64_t&
     return true;
 }
 
-// Run-at-a-time state (RunWord, TwoAxisGreedy): 64-bit arithmetic. Every
+// Run-at-a-time state (RunWord): 64-bit arithmetic. Every
 // coordinate, numerator and denominator is at most the word length + 1 <=
 // kMaxSegmentTotal + 1 = 2^30 + 1, so every product of two of them, and
 // every sum or difference of two products, fits in 64 bits.

@@ -63,7 +63,7 @@ inline std::int64_t ProfileCut::longest(std::span<const Step> steps) {
 }
 
 inline std::optional<Segment> ProfileCut::fit(std::span<const Step> steps, std::int64_t m) const {
-    if (two_) return two_->fit(m);
+    if (two_) return two_->fit(steps, m);
     return fit_segment(profile_, steps.first(static_cast<std::size_t>(m)), axes_);
 }
 

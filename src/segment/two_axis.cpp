@@ -7,9 +7,6 @@
 
 namespace stepzip::detail {
 
-using dss::floor_div;
-using dss::wide;
-
 namespace {
 // Words of up to kShortLetters letters are decided by a table made once, on
 // first use (about 10^6 simple operations: too many for some compilers'
@@ -69,33 +66,140 @@ const ShortWords& short_words() {
 inline int letter_of(Step s, bool eight) {
     return eight ? ((s & 0x5u) == 0x5u ? 1 : 0) : ((s & 1u) != 0 ? 0 : 1);
 }
+
+// Debled-Rennesson's arithmetic recognition of a 4-connected digital
+// straight segment (Debled-Rennesson & Reveilles 1995), on the lattice path
+// whose letter 0 is a step in x and letter 1 a step in y. After each letter
+// the path's points M_0..M_n lie in the strip mu <= a*x - b*y <= mu + a + b - 1
+// of its minimal characteristics (a, b, mu); U_f, U_l (L_f, L_l) are the
+// first and last points on its upper (lower) edge. A letter whose point
+// leaves the strip by one turns the strip about the opposite first leaning
+// point; by more, the word is no longer a digital straight segment.
+//
+// The prefix M_0..M_n is exact (the rule with counts (P, Q) = M_n draws it)
+// iff the values f(M) = Q*x - P*y over its points span at most P + Q - 1
+// (the short-word table's test). The strip's lines of that slope are bounded
+// by the four leaning points alone (the preimage of a digital straight
+// segment is the polygon they define: Dorst & Smeulders 1984; f is largest
+// at a lower one, smallest at an upper one), so the span over them and
+// M_0, M_n (where f is 0) decides it. The points of an edge are one period
+// (b, a) apart: the last leaning points are kept as counts of periods past
+// the first ones, whose f moves by one of their coordinates per letter.
+// Complexity: O(1) per letter (two products for the test, a few more
+// where the strip turns). Range: M_0 (r = 0) is in the strip, so |r| <= a + b
+// at every point, and with at most kMaxSegmentTotal = 2^30 letters every
+// coordinate, count of periods and f fits, products included, in 64 bits.
+static_assert(kMaxSegmentTotal <= (std::int64_t{1} << 30));
+struct Strip {
+    std::int64_t mx, my;  // M_n
+    std::int64_t a, b;    // the strip's direction (b, a)
+    std::int64_t r, rel;  // r = a*mx - b*my at M_n, rel = r - mu
+    // The first leaning points, the last ones as k * (b, a) past them (the
+    // points of an edge are one period apart), and f at U_f, L_f for
+    // (P, Q) = M_n; f at U_f + k * (b, a) is f(U_f) - k * r.
+    std::int64_t ufx, ufy, lfx, lfy, ku, kl;
+    std::int64_t fuf, flf;
+
+    // M_0 and the first letter.
+    void start(int first) {
+        mx = first == 0 ? 1 : 0;
+        my = first;
+        a = first;
+        b = 1 - first;
+        r = rel = 0;
+        ufx = ufy = lfx = lfy = 0;
+        ku = kl = 1;
+        fuf = flf = 0;
+    }
+
+    // A first leaning point (x, y, its f) moved to the last one, k periods on.
+    void to_last(std::int64_t& f, std::int64_t& x, std::int64_t& y, std::int64_t k) const {
+        f -= k * r;
+        x += k * b;
+        y += k * a;
+    }
+
+    // The strip turned about the first leaning point (x, y) to M_n.
+    void turn(std::int64_t x, std::int64_t y) {
+        a = my - y;
+        b = mx - x;
+        r = a * mx - b * my;
+    }
+
+    // Appends a letter; false when the word stops being a digital straight
+    // segment (the strip is then no longer meaningful).
+    STEPZIP_DSS_INLINE bool add(int letter) {
+        // A 0 moves x (f falls by each point's y), a 1 moves y (f rises by x).
+        const bool y = letter != 0;
+        mx += y ? 0 : 1;
+        my += y ? 1 : 0;
+        const std::int64_t dr = y ? -b : a;
+        r += dr;
+        rel += dr;
+        fuf += y ? ufx : -ufy;
+        flf += y ? lfx : -lfy;
+        const std::int64_t w = a + b;
+        if (rel >= 0 && rel < w) {
+            ku += rel == 0 ? 1 : 0;      // M_n is the next upper leaning point
+            kl += rel == w - 1 ? 1 : 0;  // the next lower one
+        } else if (rel == -1) {  // above by one: turn about U_f (U_l = M_n, L_f = old L_l)
+            to_last(flf, lfx, lfy, kl);
+            turn(ufx, ufy);
+            rel = 0;
+            ku = 1;
+            kl = 0;
+        } else if (rel == w) {  // below by one: turn about L_f (L_l = M_n, U_f = old U_l)
+            to_last(fuf, ufx, ufy, ku);
+            turn(lfx, lfy);
+            rel = a + b - 1;
+            ku = 0;
+            kl = 1;
+        } else {
+            return false;
+        }
+        return true;
+    }
+
+    // The word read so far is exact.
+    bool exact() const {
+        const std::int64_t hi = std::max(flf + std::max(-kl * r, std::int64_t{0}), std::int64_t{0});
+        const std::int64_t lo = std::min(fuf + std::min(-ku * r, std::int64_t{0}), std::int64_t{0});
+        return hi - lo < mx + my;
+    }
+};
+
+// The strip after each balanced word of kShortLetters letters (the words
+// that longest() reads on from): an index by word, the strips.
+struct Resume {
+    std::uint8_t index[1u << kShortLetters];
+    std::vector<Strip> strip;
+};
+
+const Resume& resume_table() {
+    static const Resume table = [] {
+        Resume t{};
+        const ShortWords& sw = short_words();
+        for (unsigned w = 0; w < (1u << kShortLetters); ++w) {
+            if ((sw.entry[w] & kBalanced) == 0) continue;
+            Strip st;
+            st.start(static_cast<int>(w & 1u));
+            for (int k = 1; k < kShortLetters; ++k) {
+                const bool dss = st.add(static_cast<int>((w >> k) & 1u));
+                assert(dss);  // a balanced word is a digital straight segment
+                (void)dss;
+            }
+            assert(t.strip.size() < 256);
+            t.index[w] = static_cast<std::uint8_t>(t.strip.size());
+            t.strip.push_back(st);
+        }
+        return t;
+    }();
+    return table;
+}
 }  // namespace
 
 TwoAxisGreedy::TwoAxisGreedy(Profile p) : profile_(p), eight_(profile_eight_connected(p)) {
     assert(p != Profile::patent);
-}
-
-// A run of k letters (see RunWord::probe): the largest valid prefix is the
-// largest count x within the upper bounds, if it passes the lower one; the
-// whole run is tried first by multiplications, a division only if it fails.
-inline std::int64_t TwoAxisGreedy::read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept {
-    const std::int64_t alive = st_.alive(letter, k);
-    best = 0;
-    if (alive == 0) return 0;
-    const std::int64_t x0 = letter == 0 ? st_.p : st_.q;
-    if ((letter == 0 ? st_.q : st_.p) == 0) {
-        best = alive;
-        return alive;
-    }
-    const dss::RunState::Bounds b = st_.bounds(letter);
-    wide x = x0 + alive;
-    if (!(b.b1 * x < b.a1 && b.b2 * x < b.a2)) {
-        if (b.b1 > 0) x = std::min(x, floor_div(b.a1 - 1, b.b1));
-        if (b.b2 > 0) x = std::min(x, floor_div(b.a2 - 1, b.b2));
-        if (x - x0 < 1) return alive;
-    }
-    if (x * b.c > b.e) best = x - x0;
-    return alive;
 }
 
 // The first step of a letter in a segment: signs are fixed per letter, and
@@ -113,67 +217,71 @@ inline bool admit(Step (&value)[2], Step s, int letter, bool eight) {
     return true;
 }
 
+namespace {
+// The longest exact prefix of the first n > kShortLetters steps, whose first
+// kShortLetters letters left `from` and had `best` as their longest exact
+// prefix (`best_ones` ones in it, updated with it); `value` holds the
+// letters' step values (admit). kEight: the profile is 8-connected.
+template <bool kEight>
+std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
+                          std::int64_t& best_ones) {
+    // The step values in locals, the strip in registers.
+    Step v0 = value[0], v1 = value[1];
+    Strip strip = from;
+    std::int64_t ones = best_ones;
+    for (std::size_t i = kShortLetters; i < n; ++i) {
+        const Step s = st[i];
+        const int letter = letter_of(s, kEight);
+        if (s != (letter != 0 ? v1 : v0)) {
+            if (!admit(value, s, letter, kEight)) break;
+            v0 = value[0];
+            v1 = value[1];
+        }
+        if (!strip.add(letter)) break;
+        if (strip.exact()) {
+            best = static_cast<std::int64_t>(i + 1);
+            ones = strip.my;
+        }
+    }
+    best_ones = ones;
+    return best;
+}
+}  // namespace
+
 std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
     const std::size_t n = steps.size();
     if (n == 0) return 0;
     const Step* st = steps.data();
     // Short segments (the common case on noisy contours): the letters of up
     // to kShortLetters steps index the table.
-    {
-        value_[0] = value_[1] = 0;
-        const std::size_t lim = std::min<std::size_t>(n, kShortLetters);
-        unsigned bits = 0;
-        std::size_t i = 0;
-        for (; i < lim; ++i) {
-            const Step s = st[i];
-            const int letter = letter_of(s, eight_);
-            if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
-            bits |= static_cast<unsigned>(letter) << i;
-        }
-        const unsigned e = short_words().entry[bits];
-        if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
-            const unsigned valid = e & ((2u << i) - 1u) & ~1u;
-            const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
-            const unsigned low = bits & ((1u << m) - 1u);
-            short_bits_ = bits;
-            short_ = true;
-            best_count_[1] = __builtin_popcount(low);
-            best_count_[0] = m - best_count_[1];
-            return m;
-        }
-    }
-    short_ = false;
-    st_.reset();
-    runs_.clear();
     value_[0] = value_[1] = 0;
-    std::int64_t best = 1, length = 0;
-    first_letter_ = letter_of(st[0], eight_);
-    best_count_[first_letter_] = 1;
-    best_count_[1 - first_letter_] = 0;
-    for (std::size_t pos = 0; pos < n;) {
-        const Step s = st[pos];
+    const std::size_t lim = std::min<std::size_t>(n, kShortLetters);
+    unsigned bits = 0;
+    std::size_t i = 0;
+    for (; i < lim; ++i) {
+        const Step s = st[i];
         const int letter = letter_of(s, eight_);
         if (value_[letter] != s && !admit(value_, s, letter, eight_)) break;
-        std::size_t e = pos + 1;
-        while (e < n && st[e] == s) ++e;
-        const auto k = static_cast<std::int64_t>(e - pos);
-        runs_.push_back(k);
-        const std::int64_t kk = std::min(k, kMaxSegmentTotal - length);
-        if (kk <= 0) break;
-        std::int64_t in_run;
-        const std::int64_t alive = read_run(letter, kk, in_run);
-        if (in_run > 0) {
-            best = length + in_run;
-            best_count_[0] = st_.p + (letter == 0 ? in_run : 0);
-            best_count_[1] = st_.q + (letter == 1 ? in_run : 0);
-        }
-        if (alive < k) break;
-        if (letter == 0) st_.commit_zeros(k);
-        else st_.commit_ones(k);
-        length += k;
-        pos = e;
+        bits |= static_cast<unsigned>(letter) << i;
     }
-    return best;
+    const unsigned e = short_words().entry[bits];
+    if (i < static_cast<std::size_t>(kShortLetters) || (e & kBalanced) == 0) {
+        const unsigned valid = e & ((2u << i) - 1u) & ~1u;
+        const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
+        best_length_ = m;
+        best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
+        return m;
+    }
+    // Longer words: the arithmetic recognition (Strip) from the strip of
+    // the first kShortLetters letters, a letter at a time.
+    const std::size_t lim_all = std::min<std::size_t>(n, static_cast<std::size_t>(kMaxSegmentTotal));
+    const Resume& t = resume_table();
+    const int m = 31 - __builtin_clz(e & ((2u << kShortLetters) - 2u));
+    best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
+    const Strip& from = t.strip[t.index[bits]];
+    best_length_ = eight_ ? read_letters<true>(value_, st, lim_all, from, m, best_ones_)
+                          : read_letters<false>(value_, st, lim_all, from, m, best_ones_);
+    return best_length_;
 }
 
 namespace {
@@ -184,24 +292,18 @@ void add_moves(Point& d, Step s, std::int64_t n) {
 }
 }  // namespace
 
-std::optional<Segment> TwoAxisGreedy::fit(std::int64_t m) const {
+std::optional<Segment> TwoAxisGreedy::fit(std::span<const Step> steps, std::int64_t m) const {
+    if (m < 1 || static_cast<std::size_t>(m) > steps.size()) return std::nullopt;
+    const Step* st = steps.data();
     // Letter counts of the prefix (a, b) = (#zeros, #ones): the rule's
     // counts both for eval4 (|dx|, |dy|) and for the minor axis of the
     // 8-connected profiles (L - S, S).
-    std::int64_t cnt[2] = {best_count_[0], best_count_[1]};
-    if (m != cnt[0] + cnt[1]) {
-        if (short_) return std::nullopt;
-        cnt[0] = cnt[1] = 0;
-        std::int64_t left = m;
-        int letter = first_letter_;
-        for (std::size_t i = 0; left > 0 && i < runs_.size(); ++i, letter ^= 1) {
-            const std::int64_t k = std::min(left, runs_[i]);
-            cnt[letter] += k;
-            left -= k;
-        }
-        if (left > 0) return std::nullopt;
+    std::int64_t b = best_ones_;
+    if (m != best_length_) {
+        b = 0;
+        for (std::int64_t i = 0; i < m; ++i) b += letter_of(st[i], eight_);
     }
-    const std::int64_t a = cnt[0], b = cnt[1];
+    const std::int64_t a = m - b;
     Segment seg;
     if (a > 0) add_moves(seg.delta, value_[0], a);
     if (b > 0) add_moves(seg.delta, value_[1], b);
@@ -211,32 +313,17 @@ std::optional<Segment> TwoAxisGreedy::fit(std::int64_t m) const {
         seg.phase[0] = default_phase(profile_, fa, b);
         return seg;
     }
-    // F0 in [max over 0-positions of p*b - q*a, min over 1-positions); only
-    // a run's last letter bounds it (see fit.cpp, word_phases).
+    // F0 in [max over 0-positions of p*b - q*a, min over 1-positions) (see
+    // fit.cpp, word_phases); v = p*b - q*a moves by b at a 0, by -a at a 1.
     constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
-    std::int64_t lo = -kInf, hi = kInf, p = 0, q = 0, left = m;
-    if (short_) {
-        for (std::int64_t i = 0; i < m; ++i) {
-            if ((short_bits_ >> i) & 1u) {
-                hi = std::min(hi, p * b - q * a);
-                ++q;
-            } else {
-                lo = std::max(lo, p * b - q * a);
-                ++p;
-            }
-        }
-        left = 0;
-    }
-    int letter = first_letter_;
-    for (std::size_t i = 0; left > 0; ++i, letter ^= 1) {
-        const std::int64_t k = std::min(left, runs_[i]);
-        left -= k;
-        if (letter == 0) {
-            lo = std::max(lo, (p + k - 1) * b - q * a);
-            p += k;
+    std::int64_t lo = -kInf, hi = kInf, v = 0;
+    for (std::int64_t i = 0; i < m; ++i) {
+        if (letter_of(st[i], eight_) != 0) {
+            hi = std::min(hi, v);
+            v -= a;
         } else {
-            hi = std::min(hi, p * b - (q + k - 1) * a);
-            q += k;
+            lo = std::max(lo, v);
+            v += b;
         }
     }
     const auto f = dss::pick_phase(profile_, fa, b, lo, hi);

@@ -6,16 +6,16 @@
 // leading axis moves on every tick, so its own word is all ones). A segment
 // holds at most two distinct step values, one per letter, and they must be
 // compatible (one sign per axis; for the 8-connected profiles the axis step
-// is a projection of the diagonal). TwoAxisGreedy reads runs of identical
-// steps into the kernel's run state (dss.hpp, as RunWord; no per-axis loops,
-// no profile switches) and decides each run with multiplications only; a
-// division is needed only on the run where the word stops being a digital
-// straight segment or where the run's last step is not a valid end. Its
-// answers are those of RunSegment and of the letter-by-letter
-// SegmentRecognizer (tests/recognizer_test.cpp, tests/segmenter_two_axis_test.cpp).
+// is a projection of the diagonal). TwoAxisGreedy decides words of up to
+// 12 letters by a table and longer ones by the arithmetic recognition of
+// digital straight segments (Debled-Rennesson & Reveilles 1995: the strip of
+// the minimal characteristics and its four extreme leaning points), a letter
+// at a time with a few additions and products: no hulls, no per-axis loops,
+// no profile switches. Its answers are those of RunSegment and of the letter-by-letter
+// SegmentRecognizer (tests/recognizer_test.cpp,
+// tests/segmenter_two_axis_test.cpp).
 // Invariant: longest() returns RunSegment's (and SegmentRecognizer's) longest
-// exact prefix. Complexity: O(log h) per run, h = hull vertices; fit() is
-// O(runs).
+// exact prefix. Complexity: O(1) per letter; fit() is O(m).
 #pragma once
 
 #include <cstdint>
@@ -38,28 +38,17 @@ public:
     /// input). The steps must be valid for the profile on two axes.
     std::int64_t longest(std::span<const Step> steps);
     /// fit_segment(p, steps.first(m), 2), for m = longest(steps) called just
-    /// before on the same steps (it reuses the runs that call read).
-    /// nullopt only if the prefix is not one exact segment.
-    std::optional<Segment> fit(std::int64_t m) const;
+    /// before on the same steps (it takes the letters' step values that call
+    /// admitted). nullopt only if the prefix is not one exact segment.
+    std::optional<Segment> fit(std::span<const Step> steps, std::int64_t m) const;
 
 private:
-    // A run of k letters `letter`: returns how many keep the word a DSS and
-    // sets `best` to the largest valid prefix length of the run (0: none),
-    // with multiplications only unless the run is cut.
-    std::int64_t read_run(int letter, std::int64_t k, std::int64_t& best) const noexcept;
-
     Profile profile_;
     bool eight_;
-    dss::RunState st_;  // hulls and slope bounds, as RunWord's (dss.hpp)
-    // The runs read by the last longest(): letter of the first run, run
-    // lengths (letters alternate), the step value of each letter.
-    int first_letter_ = 0;
-    std::vector<std::int64_t> runs_;
+    // The step value of each letter, admitted by the last longest(); its
+    // answer and the ones (letter 1) in that prefix.
     Step value_[2] = {0, 0};
-    std::int64_t best_count_[2] = {0, 0};  // letters of the longest valid prefix
-    // The last longest() was decided by the short-word table: its letters.
-    bool short_ = false;
-    unsigned short_bits_ = 0;
+    std::int64_t best_length_ = 0, best_ones_ = 0;
 };
 
 }  // namespace stepzip::detail

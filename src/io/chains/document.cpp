@@ -7,6 +7,10 @@
 #include <algorithm>
 #include <cstdio>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "document_internal.hpp"
 
 namespace stepzip {
@@ -141,10 +145,32 @@ TrialResult trial_parse(InputFormat f, std::string_view text) {
 
 }  // namespace
 
+namespace io {
+bool has_binary_byte(std::string_view bytes) noexcept {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+    const std::size_t n = bytes.size();
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    // A control byte is one that min(byte, 0x1F) leaves unchanged.
+    const __m128i c0 = _mm_set1_epi8(0x1F), tab = _mm_set1_epi8('\t'), lf = _mm_set1_epi8('\n');
+    const __m128i cr = _mm_set1_epi8('\r'), del = _mm_set1_epi8(0x7F);
+    for (; n - i >= 16; i += 16) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
+        const __m128i ctl = _mm_cmpeq_epi8(_mm_min_epu8(v, c0), v);
+        const __m128i ws = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, tab), _mm_cmpeq_epi8(v, lf)), _mm_cmpeq_epi8(v, cr));
+        const __m128i bad = _mm_or_si128(_mm_andnot_si128(ws, ctl), _mm_cmpeq_epi8(v, del));
+        if (_mm_movemask_epi8(bad) != 0) return true;
+    }
+#endif
+    for (; i < n; ++i)
+        if (is_binary_byte(p[i])) return true;
+    return false;
+}
+}  // namespace io
+
 std::optional<InputFormat> detect_format(std::string_view head) noexcept {
     try {
-        for (char ch : head)
-            if (io::is_binary_byte(static_cast<unsigned char>(ch))) return InputFormat::steps;
+        if (io::has_binary_byte(head)) return InputFormat::steps;
         // Only whole lines take part: the head may end in the middle of one.
         std::string_view text = head;
         const std::size_t nl = text.rfind('\n');

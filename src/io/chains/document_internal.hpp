@@ -97,6 +97,10 @@ inline bool is_binary_byte(unsigned char c) {
     return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F;
 }
 
+/// True when some byte of `bytes` is_binary_byte (16 bytes at a time where
+/// SSE2 is there; document.cpp).
+bool has_binary_byte(std::string_view bytes) noexcept;
+
 /// "byte 0x07" or "'x'" for messages.
 std::string describe_byte(unsigned char c);
 
