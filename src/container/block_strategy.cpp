@@ -164,6 +164,39 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
     });
 }
 
+// The strong levels try the context-mixing step model (docs/FORMAT.md
+// 1.11.2) on two-axis blocks against the mixed coding of the model the
+// first pass chose: on a block of more than kCmSampleSteps steps both code
+// its whole chains spread over it (spread_chains(), about kCmSampleSteps
+// steps, no window); the step model is then coded from the window in the
+// second pass (window_step_pass()) for the whole block.
+constexpr std::uint64_t kCmSampleSteps = 1u << 16;
+
+bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+    const Block& block = job.block;
+    if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
+        return false;
+    const bool whole = job.steps <= kCmSampleSteps;
+    if (type == kSegmentModel) {
+        Block sample;
+        Cut cut;
+        if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
+        const Block& b = whole ? block : sample;
+        const Cut& c = whole ? job.cut : cut;
+        return write_cm_step_model(b).size() < write_segment_model(b, s.profile, c, nullptr, false, true).size();
+    }
+    if (type == kStepModel) {
+        const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
+        const Block& b = whole ? block : sample;
+        return write_cm_step_model(b).size() < write_mixed_step_model(b, 1).size();
+    }
+    // A record block (zstd of the segments) or a table block (arcs): on the
+    // whole block only. Not a raw block: the window holds no steps of a
+    // block the first pass made raw (compress.cpp), so it cannot become a
+    // step-model block.
+    return (type == kChains || type == kTable) && whole && write_cm_step_model(block).size() + 8 < best.size();
+}
+
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).
 bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const TableEffort& effort) {
@@ -651,6 +684,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");
         return;
     }
+    job.cm = cm_step_model_may_win(job, s, type, best);
     job.type = type;
     job.record = std::move(best);
     if (type != kSegmentModel && type != kTable && type != kExtended) job.cut.clear();
@@ -673,6 +707,7 @@ bool has_symbols(const WindowView& window) {
 }  // namespace
 
 bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.cm) return !window.empty();
     if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || window.empty()) return false;
     // A table block tries the step model from the window where its first
     // pass tried the step model: at kFastStepLevel and above, dense blocks.
@@ -688,7 +723,34 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
            !std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; });
 }
 
+// The context-mixing step model of a block the first pass chose it for
+// (job.cm), from the window when it holds steps; kept when smaller than the
+// first pass's record. The block is then a step-model block (no segment
+// items in the window).
+void cm_pass(BlockJob& job, const WindowView& window) {
+    const bool w = !window.empty() && has_symbols(window);
+    const std::string model = write_cm_step_model(job.block, w ? &window : nullptr);
+    if (model.empty() || model.size() > kMaxBlockPayload) {
+        job.cm = false;
+        return;
+    }
+    std::string rec = make_stored_record(kMixedModel, job.flags | (w ? kFlagWindow : 0u), model);
+    if (rec.size() >= job.record.size()) {
+        job.cm = false;
+        return;
+    }
+    job.record = std::move(rec);
+    job.type = kStepModel;
+    job.cut.clear();
+    job.raw_payload.clear();
+    job.table_keys = {};
+}
+
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.cm) {
+        cm_pass(job, window);
+        if (job.cm) return;
+    }
     if (!wants_window_steps(job, s, window) || !has_symbols(window)) return;
     int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
@@ -730,7 +792,7 @@ namespace {
 // and on data the mixer cannot predict (random walks: about 1% smaller) it
 // is not worth that. The block's type (job.type) stays the model's.
 void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel && job.type != kExtended))
+    if (job.cm || s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel && job.type != kExtended))
         return;
     const unsigned flags = view_record(job.record).flags;
     const WindowView* w = (flags & kFlagWindow) ? &window : nullptr;
