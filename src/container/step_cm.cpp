@@ -21,6 +21,10 @@
 #include <memory>
 #include <new>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include "mix.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
@@ -47,10 +51,10 @@ constexpr std::array<std::array<std::int8_t, kNodes>, 8> kPath = {{
     {1, 0, 1, -1, -1, -1, -1},    // 7
 }};
 
-constexpr int kModels = 14;                 // hashed context models
+constexpr int kModels = 11;                 // hashed context models
 constexpr int kInputs = kModels + 2;        // + the match model + bias
 constexpr int kCountLimit = 255;            // a counter's rate settles at 1/(limit + 1.5)
-constexpr std::int64_t kMixRate = 14;       // mixer learning rate (see train())
+constexpr std::int64_t kMixRate = 3;        // mixer learning rate (see train())
 constexpr std::int32_t kInitWeight = 16384; // 0.25 in 16.16
 constexpr std::int32_t kMaxWeight = 1 << 22;
 constexpr int kApmRate = 7;
@@ -91,13 +95,34 @@ static_assert(sizeof(Row) == 32);
 class RowTable {
 public:
     explicit RowTable(int bits) : mask_((std::size_t{1} << bits) - 1) {
-        raw_ = std::calloc((mask_ + 1) * sizeof(Row) + 64, 1);
+        const std::size_t bytes = (mask_ + 1) * sizeof(Row);
+#if defined(__linux__)
+        // Fresh zero pages, in 2 MiB pages where the kernel allows: every
+        // step touches a row of each model anywhere in the table, and 4 KiB
+        // pages cost a TLB miss on most of them.
+        if (bytes >= kHuge) {
+            size_ = bytes + kHuge;
+            void* m = mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+            if (m == MAP_FAILED) throw std::bad_alloc();
+            map_ = m;
+            const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(m) + kHuge - 1) & ~(kHuge - 1);
+            madvise(reinterpret_cast<void*>(a), bytes, MADV_HUGEPAGE);
+            rows_ = reinterpret_cast<Row*>(a);
+            return;
+        }
+#endif
+        raw_ = std::calloc(bytes + 64, 1);
         if (!raw_) throw std::bad_alloc();
         rows_ = reinterpret_cast<Row*>((reinterpret_cast<std::uintptr_t>(raw_) + 63) & ~std::uintptr_t{63});
     }
     RowTable(const RowTable&) = delete;
     RowTable& operator=(const RowTable&) = delete;
-    ~RowTable() { std::free(raw_); }
+    ~RowTable() {
+#if defined(__linux__)
+        if (map_) munmap(map_, size_);
+#endif
+        std::free(raw_);
+    }
 
     void prefetch(std::uint64_t h) const { __builtin_prefetch(&rows_[index(h)], 1); }
     // The row of context hash `h`: the pair's row with its check, else the
@@ -124,8 +149,11 @@ private:
         r->uses = static_cast<std::uint16_t>(r->uses + (r->uses < 65535));
         return r;
     }
+    static constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
     std::size_t mask_;
     void* raw_ = nullptr;
+    void* map_ = nullptr;
+    std::size_t size_ = 0;
     Row* rows_ = nullptr;
 };
 
@@ -244,12 +272,11 @@ private:
         std::int32_t* w2 = &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kInputs];
         const std::int32_t s1 = dot(w1, x), s2 = dot(w2, x);
         const std::int32_t s = (s1 + s2) >> 1;
-        const std::int32_t pm = mixdetail::squash(s);
         const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
         const std::size_t row2 = (static_cast<std::size_t>(n) * 2 * 24 + (expect < 0 ? 0 : 24 * expect) + static_cast<std::size_t>(lb)) * 2 +
                                  (expect >= 0 ? 1u : 0u);
         const std::int32_t a2 = apm2_.refine(s, row2);
-        std::int32_t p = (2 * pm + a1 + a2) >> 2;
+        std::int32_t p = (a1 + a2) >> 1;
         p = std::clamp(p, 32, 65535 - 32);
         int bit;
         if constexpr (I::kDecode) {
@@ -298,9 +325,7 @@ private:
             ++k;
         };
         set(p << 3 | order(1));
-        set(order(2));
         set(p << 9 | order(3));
-        set(order(4));
         set(order(6));
         set(order(8));
         set(order(12));
@@ -308,24 +333,21 @@ private:
         set(order(24));
         // The digital straight segment being drawn: the current run and the
         // runs and turns before it (a DSS is two run lengths).
-        const int r1 = static_cast<int>((w_.runs >> 3) & 31), r2 = static_cast<int>((w_.runs >> 11) & 31);
         set(ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w_.run, 63))), w_.runs & 0xFFFFFFu));
-        const std::uint64_t growth = static_cast<std::uint64_t>(std::clamp(w_.run - r1, -3, 3) + 3) * 8 +
-                                     static_cast<std::uint64_t>(std::clamp(r1 - r2, -3, 3) + 3);
-        set(ctx_join(ctx_join(growth, w_.runs & 0x707u), static_cast<std::uint64_t>(std::min(r1, 15)) << 3 | order(1)));
         // Closure: where the chain's start lies.
         const std::uint64_t where = w_.where();
         set(ctx_join(where, p << 3 | order(1)));
         // The match's predicted symbol, its length and the last turns.
         set(ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
                      order(2)));
-        // Position in the chain.
-        set(ctx_join(static_cast<std::uint64_t>(std::min(bit_length(w_.in_chain), 15)), p << 9 | order(3)));
+        // The position relative to the chain's start, finer (clamped to 64).
+        const std::int64_t cx = std::clamp<std::int64_t>(w_.dx, -64, 64), cy = std::clamp<std::int64_t>(w_.dy, -64, 64);
+        set(ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2)));
     }
 
     void note_turn(int sym) {
         const auto turn = static_cast<unsigned>((sym - prev_) & 7);
-        turns_hi_ = (turns_hi_ << 3) | (turns_ >> 60);
+        turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
         w_.step(sym, turn);
         prev_ = sym;
@@ -347,7 +369,7 @@ private:
     int prev_ = 0;
     int pred_turn_ = -1;
     std::uint64_t turns_ = 0;     // turns, 3 bits each, latest lowest (across chains)
-    std::uint64_t turns_hi_ = 0;  // the turns before those (turns_ holds 21 and a bit)
+    std::uint64_t turns_hi_ = 0;  // the turns before those (turns_ holds 21 whole ones)
     StepWalk w_;
 };
 

@@ -268,6 +268,33 @@ files.update({
     'v2_arc_flag': ('corrupt', whereT % set_atA,
                     arc_block(payloadA[:set_atA] + put_varint(table_setA & ~(1 << 53)) + payloadA[method_atA:])),
 })
+# The context-mixing step model (docs/FORMAT.md 1.11.2), from
+# tests/golden/v2/cm_glyphs.fc.stz: its first block is a type 6 block of
+# model byte 4 (not flagged `window`).
+cm = open(os.path.join(here, '..', 'golden', 'v2', 'cm_glyphs.fc.stz'), 'rb').read()
+assert cm[8] & 7 == 6 and not cm[8] & 0x20, 'v2/cm_glyphs.fc.stz should start with a mixed-model block'
+c_csize, c_payload = varint_at(cm, 9)
+assert cm[c_payload] == 4, 'v2/cm_glyphs.fc.stz should start with a context-mixing step model'
+c_end = c_payload + c_csize
+
+
+def cm_block(new):
+    """cm_glyphs.fc.stz with its first block's payload replaced (size and
+    block checksum redone)."""
+    body = cm[8:9] + put_varint(len(new)) + new
+    return cm[:8] + body + struct.pack('<I', check32(body)) + cm[c_end + 4:]
+
+
+files.update({
+    # The range-coded stream lost its last byte: the decoder reads past the
+    # payload's end (at its new end).
+    'v2_cm_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (c_csize - 1),
+                           cm_block(cm[c_payload:c_end - 1])),
+    # A byte after the stream's end: the stream does not end at the
+    # payload's end (at the added byte).
+    'v2_cm_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % c_csize,
+                         cm_block(cm[c_payload:c_end] + b'\x00')),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')
