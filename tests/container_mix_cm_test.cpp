@@ -2,8 +2,9 @@
 // 1.11.2): it round-trips with and without a window, 8- and 4-connected,
 // and on the decoder's running history of a frame; its payload bytes of a
 // small fixed input are pinned; the decoder's errors name the payload byte;
-// the strong levels write it on glyph contours and keep the segment model on
-// plots; a block too small or of other than two axes gets none.
+// every flipped bit of its stream decodes or is corrupt; the strong levels
+// write it on glyph contours and keep the segment model on plots; a block
+// of other than two axes gets none.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,6 +54,15 @@ Block decode(const std::string& payload, const WindowView* view) {
     BlockCounts counts;
     auto r = read_step_model(payload, 2, true, out, counts, "t", view, kFormatVersion, nullptr, true);
     EXPECT_TRUE(r.ok()) << r.error().message;
+    return out;
+}
+
+// The first `lines` lines of corpora/`rel`.
+std::string corpus_text(const char* rel, std::size_t lines) {
+    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
+    std::string out, line;
+    for (std::size_t i = 0; i < lines && std::getline(f, line); ++i) out += line + '\n';
+    EXPECT_FALSE(out.empty()) << rel;
     return out;
 }
 
@@ -119,13 +129,31 @@ TEST(CmStepModel, DecoderErrorsNameThePayloadByte) {
     EXPECT_TRUE(write_cm_step_model(three).empty());
 }
 
-// The first `lines` lines of corpora/`rel`.
-std::string corpus_text(const char* rel, std::size_t lines) {
-    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
-    std::string out, line;
-    for (std::size_t i = 0; i < lines && std::getline(f, line); ++i) out += line + '\n';
-    EXPECT_FALSE(out.empty()) << rel;
-    return out;
+// Every bit of the range-coded stream flipped: the reader decodes some
+// chains or reports a corrupt payload byte; never anything else.
+TEST(CmStepModel, EveryStreamBitFlipDecodesOrIsCorrupt) {
+    const Block b = fixed_block(corpus_text("glyphs/c059-8.fc", 4));
+    const std::string payload = write_cm_step_model(b);
+    ASSERT_FALSE(payload.empty());
+    // model byte, then nchains, nsteps and the layout's two sizes (0: no layout)
+    std::size_t header = 1;
+    for (int field = 0; field < 4; ++field)
+        while (static_cast<unsigned char>(payload[header++]) & 0x80u) {
+        }
+    int rejected = 0;
+    for (std::size_t k = header; k < payload.size(); ++k)
+        for (int bit = 0; bit < 8; ++bit) {
+            std::string bad = payload;
+            bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
+            Block out;
+            BlockCounts counts;
+            auto r = read_step_model(bad, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+            if (r.ok()) continue;
+            ++rejected;
+            EXPECT_EQ(r.error().code, Errc::corrupt) << r.error().message;
+            EXPECT_EQ(r.error().message.rfind("blk byte ", 0), 0u) << r.error().message;
+        }
+    EXPECT_GT(rejected, 0);
 }
 
 // Frames of several blocks, each flagged `window` but the first: the

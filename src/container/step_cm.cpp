@@ -163,8 +163,10 @@ private:
 class Apm {
 public:
     explicit Apm(int rows) : t_(static_cast<std::size_t>(rows) * 33) {
-        for (std::size_t r = 0; r < static_cast<std::size_t>(rows); ++r)
-            for (int j = 0; j < 33; ++j) t_[r * 33 + static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        // Every row starts the same.
+        for (int j = 0; j < 33; ++j) t_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        for (std::size_t r = 1; r < static_cast<std::size_t>(rows); ++r)
+            std::memcpy(&t_[r * 33], &t_[0], 33 * sizeof(std::uint16_t));
     }
     std::int32_t refine(std::int32_t st, std::size_t row) {
         const std::int32_t pos = std::clamp(st, -2047, 2047) + 2048;
