@@ -173,7 +173,8 @@ TEST(MixedModels, PayloadBytesArePinned) {
 
 // Both codings decode (model bytes 0-3); the curvature flag is part of the
 // coding (the same bytes under the other flag do not give the block back);
-// a model byte above 3 is corrupt at payload byte 0.
+// a model byte above 4 (4: the context-mixing step model, tested in
+// container_mix_cm_test.cpp) is corrupt at payload byte 0.
 TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
     const Block b = fixed_block(contours(9, 60));
     const auto cut = greedy_cut(b, Profile::eval8);
@@ -200,7 +201,7 @@ TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
         r = read_step_model(step, 2, true, other, counts, "t", nullptr, kFormatVersion, nullptr, true);
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
-        for (const unsigned bad : {4u, 5u, 128u, 255u}) {
+        for (const unsigned bad : {5u, 6u, 128u, 255u}) {
             seg[0] = static_cast<char>(bad);
             step[0] = static_cast<char>(bad);
             r = read_segment_model(seg, Profile::eval8, 2, true, other, counts, "blk", nullptr, nullptr, false, true);

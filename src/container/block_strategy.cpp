@@ -164,6 +164,41 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
     });
 }
 
+// The strong levels try the context-mixing step model (docs/FORMAT.md
+// 1.11.2) on two-axis blocks against the mixed coding of the model the
+// first pass chose, before zstd's blocks: on a block of more than
+// kCmSampleSteps steps both code its whole chains spread over it
+// (spread_chains(), about kCmSampleSteps steps, no window); the step
+// model is then coded from the window in the second pass
+// (window_step_pass()) for the whole block. At -L 19 on corpora/ it made
+// every glyph and traced file 8-33 % smaller and was taken on one plot
+// file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
+constexpr std::uint64_t kCmSampleSteps = 1u << 16;
+
+bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+    const Block& block = job.block;
+    if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
+        return false;
+    const bool whole = job.steps <= kCmSampleSteps;
+    if (type == kSegmentModel) {
+        Block sample;
+        Cut cut;
+        if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
+        const Block& b = whole ? block : sample;
+        const Cut& c = whole ? job.cut : cut;
+        return write_cm_step_model(b).size() < write_segment_model(b, s.profile, c, nullptr, false, true).size();
+    }
+    if (type == kStepModel) {
+        const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
+        const Block& b = whole ? block : sample;
+        return write_cm_step_model(b).size() < write_mixed_step_model(b, 1).size();
+    }
+    // A table block (arcs): on the whole block only. Not a raw block: the
+    // window holds no steps of a block the first pass made raw
+    // (compress.cpp), so it cannot become a step-model block.
+    return type == kTable && whole && write_cm_step_model(block).size() + 8 < best.size();
+}
+
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).
 bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const TableEffort& effort) {
@@ -640,7 +675,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         }
         return rec.size() < mixed_size;
     };
-    if (!chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload && zstd_may_win(chain_payload, best, true)) {
+    // The context-mixing step model, where it may win, is coded in the
+    // second pass: zstd, which does not come near it there, is not tried.
+    job.cm = cm_step_model_may_win(job, s, type, best);
+    if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
+        zstd_may_win(chain_payload, best, true)) {
         std::string rec = make_block_record(kChains, job.flags, chain_payload, s.level);
         if (beats_model(rec)) consider(kChains, std::move(rec));
     }
@@ -654,7 +693,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // chain block is weak (less than 5:1): a general-purpose compressor does
     // not come near a modeled block that reaches it (docs/benchmarks.md).
     const bool raw_can_win = s.thorough || !chain_kind || best.size() * 5 > job.bytes.size();
-    if (job.bytes.size() <= kMaxBlockBytes && (!chain_kind || s.allow_raw) && raw_can_win) {
+    if (job.bytes.size() <= kMaxBlockBytes && (!chain_kind || s.allow_raw) && raw_can_win && !job.cm) {
         std::string raw;
         put_varint(raw, block.chains.size());
         put_varint(raw, job.steps);
@@ -690,6 +729,7 @@ bool has_symbols(const WindowView& window) {
 }  // namespace
 
 bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.cm) return !window.empty();
     if (job.type == kRaw || job.block.axes != 2 || job.steps > kMaxBlockSteps || window.empty()) return false;
     // A table block tries the step model from the window where its first
     // pass tried the step model: at kFastStepLevel and above, dense blocks.
@@ -705,7 +745,34 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
            !std::all_of(window.begin(), window.end(), [](const auto& b) { return b->first_type == kSegmentModel; });
 }
 
+// The context-mixing step model of a block the first pass chose it for
+// (job.cm), from the window when it holds steps; kept when smaller than the
+// first pass's record. The block is then a step-model block (no segment
+// items in the window).
+void cm_pass(BlockJob& job, const WindowView& window) {
+    const bool w = !window.empty() && has_symbols(window);
+    const std::string model = write_cm_step_model(job.block, w ? &window : nullptr);
+    if (model.empty() || model.size() > kMaxBlockPayload) {
+        job.cm = false;
+        return;
+    }
+    std::string rec = make_stored_record(kMixedModel, job.flags | (w ? kFlagWindow : 0u), model);
+    if (rec.size() >= job.record.size()) {
+        job.cm = false;
+        return;
+    }
+    job.record = std::move(rec);
+    job.type = kStepModel;
+    job.cut.clear();
+    job.raw_payload.clear();
+    job.table_keys = {};
+}
+
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.cm) {
+        cm_pass(job, window);
+        if (job.cm) return;
+    }
     if (!wants_window_steps(job, s, window) || !has_symbols(window)) return;
     int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
     const std::string model = write_step_model(job.block, order, &window, &order);
@@ -747,7 +814,7 @@ namespace {
 // and on data the mixer cannot predict (random walks: about 1% smaller) it
 // is not worth that. The block's type (job.type) stays the model's.
 void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
-    if (s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel && job.type != kExtended))
+    if (job.cm || s.level < kStrongLevel || (job.type != kSegmentModel && job.type != kStepModel && job.type != kExtended))
         return;
     const unsigned flags = view_record(job.record).flags;
     const WindowView* w = (flags & kFlagWindow) ? &window : nullptr;

@@ -43,6 +43,11 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr,
                                    bool curvature = true);
 
+/// The payload of a block type 6 of the context-mixing step model (model
+/// byte kMixedStepCm, docs/FORMAT.md 1.11.2); empty when the block is not
+/// two-axis. With `window`, its match model starts from the window's steps.
+std::string write_cm_step_model(const Block& block, const WindowView* window = nullptr);
+
 /// Parse a payload of the given kind into `out` (chains and layout, when
 /// `expand`) and add its counts to `counts`. Errors: Errc::corrupt,
 /// Errc::limit, each naming the payload byte offset after `where`.
@@ -79,6 +84,11 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
                              BlockCounts& counts, const std::string& where,
                              const WindowView* window = nullptr, int version = kFormatVersion,
                              StepHistory* running = nullptr, bool mixed = false);
+
+/// The reader of a kMixedStepCm payload (read_step_model() calls it; the
+/// same arguments).
+Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                                const std::string& where, const WindowView* window, StepHistory* running);
 
 /// Decoder, both models: when `expand`, `out` becomes an empty block of
 /// `axes` axes with `layout`.

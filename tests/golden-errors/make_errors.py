@@ -182,8 +182,9 @@ s_end = s_payload + s_csize
 short = strong[:9] + put_varint(s_csize - 1) + strong[s_payload:s_end - 1]
 short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
 files.update({
-    # The model byte names no model (0-3 do: model and curvature flag).
-    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 4))),
+    # The model byte names no model (0-3 do: model and curvature flag; 4 the
+    # context-mixing step model).
+    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 5))),
     # The range-coded stream lost its last byte (size and checksum redone):
     # the decoder notices at the payload's end.
     'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
@@ -289,6 +290,33 @@ assert raw[r_payload] == 4 and raw[r_payload + 1] == 1
 files.update({
     # Flags 3: bit 1 names nothing (1, unpredicted minor totals, is the only value).
     'v2_table_raw_flags': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(raw, r_payload + 1, 3))),
+})
+# The context-mixing step model (docs/FORMAT.md 1.11.2), from
+# tests/golden/v2/cm_glyphs.fc.stz: its first block is a type 6 block of
+# model byte 4 (not flagged `window`).
+cm = open(os.path.join(here, '..', 'golden', 'v2', 'cm_glyphs.fc.stz'), 'rb').read()
+assert cm[8] & 7 == 6 and not cm[8] & 0x20, 'v2/cm_glyphs.fc.stz should start with a mixed-model block'
+c_csize, c_payload = varint_at(cm, 9)
+assert cm[c_payload] == 4, 'v2/cm_glyphs.fc.stz should start with a context-mixing step model'
+c_end = c_payload + c_csize
+
+
+def cm_block(new):
+    """cm_glyphs.fc.stz with its first block's payload replaced (size and
+    block checksum redone)."""
+    body = cm[8:9] + put_varint(len(new)) + new
+    return cm[:8] + body + struct.pack('<I', check32(body)) + cm[c_end + 4:]
+
+
+files.update({
+    # The range-coded stream lost its last byte: the decoder reads past the
+    # payload's end (at its new end).
+    'v2_cm_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (c_csize - 1),
+                           cm_block(cm[c_payload:c_end - 1])),
+    # A byte after the stream's end: the stream does not end at the
+    # payload's end (at the added byte).
+    'v2_cm_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % c_csize,
+                         cm_block(cm[c_payload:c_end] + b'\x00')),
 })
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)

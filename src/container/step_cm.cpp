@@ -1,0 +1,423 @@
+// The context-mixing step model (docs/FORMAT.md 1.11.2, block type 6 model
+// byte 4): two-axis chains coded step by step, in the manner of lpaq1 and
+// paq8 but over turns instead of bytes. Each step is an end bit and, but at
+// a chain's end, its turn against the previous step, binarized by a small
+// tree whose first decision is "straight on"; every decision of the tree is
+// predicted by hashed context models (orders of 1 to 24 turns, the runs of
+// the digital straight segment being drawn, the way back to the chain's
+// start, the match model's prediction), their stretched probabilities mixed
+// by two online-trained mixers whose weights a small context selects, then
+// refined by two adaptive probability maps. A stretch repeated anywhere
+// before is repeated steps, whatever cut a segment model would give it.
+// One template (CmStepCoder<Io>) runs both directions; integer arithmetic
+// only, so any decoder that follows FORMAT.md reproduces every probability.
+// Complexity: one plain bit and 0-4 mixed bits per step (eleven hashed
+// models each; one mixed bit for a step straight on), one cache line per
+// model and step (0.3-0.6 us a step on the development machine); memory 32
+// bytes per hashed row, 2^12..2^21 rows by the block's step count
+// (FORMAT.md), plus the step history.
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+#include "mix.hpp"
+#include "modeled_block.hpp"
+#include "range_coder.hpp"
+#include "step_history.hpp"
+
+namespace stepzip::stz {
+
+namespace {
+
+// Decisions of the turn tree (t = the turn, 0..7, in 45-degree units):
+// node 0: t != 0; node 1: t not in {1, 7}; node 2: t == 7 (of 1, 7);
+// node 3: t not in {2, 6}; node 4: t == 6 (of 2, 6); node 5: t != 4;
+// node 6: t == 5 (of 3, 5).
+constexpr int kNodes = 7;
+// kPath[t][n]: the bit turn t takes at node n, or -1 off its path.
+constexpr std::array<std::array<std::int8_t, kNodes>, 8> kPath = {{
+    {0, -1, -1, -1, -1, -1, -1},  // 0
+    {1, 0, 0, -1, -1, -1, -1},    // 1
+    {1, 1, -1, 0, 0, -1, -1},     // 2
+    {1, 1, -1, 1, -1, 1, 0},      // 3
+    {1, 1, -1, 1, -1, 0, -1},     // 4
+    {1, 1, -1, 1, -1, 1, 1},      // 5
+    {1, 1, -1, 0, 1, -1, -1},     // 6
+    {1, 0, 1, -1, -1, -1, -1},    // 7
+}};
+
+constexpr int kModels = 11;                 // hashed context models
+constexpr int kInputs = kModels + 2;        // + the match model + bias
+constexpr int kCountLimit = 255;            // a counter's rate settles at 1/(limit + 1.5)
+constexpr std::int64_t kMixRate = 3;        // mixer learning rate (see train())
+constexpr std::int32_t kInitWeight = 16384; // 0.25 in 16.16
+constexpr std::int32_t kMaxWeight = 1 << 22;
+constexpr int kApmRate = 7;
+constexpr int kMinRowBits = 12, kMaxRowBits = 21;
+
+// 2^16 / (n + 1.5): the counters' rates (StateMap-like, lpaq1).
+struct RecipTable {
+    std::int32_t v[kCountLimit + 1];
+    constexpr RecipTable() : v() {
+        for (int n = 0; n <= kCountLimit; ++n) v[n] = static_cast<std::int32_t>(131072 / (2 * n + 3));
+    }
+};
+constexpr RecipTable kRecip{};
+
+// A counter: probability of a 1 in the high 22 bits, count in the low 10.
+constexpr std::uint32_t kCounterInit = std::uint32_t{1} << 31;
+
+[[gnu::always_inline]] inline std::uint32_t counter_p16(std::uint32_t e) { return e >> 16; }
+[[gnu::always_inline]] inline void counter_update(std::uint32_t& e, int bit) {
+    const std::uint32_t n = e & 1023u;
+    const std::int32_t p = static_cast<std::int32_t>(e >> 10);
+    const std::int32_t target = bit ? (1 << 22) - 1 : 0;
+    const std::int32_t q = p + static_cast<std::int32_t>((static_cast<std::int64_t>(target - p) * kRecip.v[n]) >> 16);
+    e = (static_cast<std::uint32_t>(q) << 10) | (n < kCountLimit ? n + 1 : n);
+}
+
+// One hashed context's counters for the nodes of a step, with a check of
+// the context (0: empty row) and a use count for replacement.
+struct Row {
+    std::uint16_t check;
+    std::uint16_t uses;
+    std::uint32_t p[kNodes];
+};
+static_assert(sizeof(Row) == 32);
+
+// The rows of all hashed models: 2^bits rows, looked up in pairs (one
+// 64-byte line).
+class RowTable {
+public:
+    explicit RowTable(int bits) : mask_((std::size_t{1} << bits) - 1) {
+        const std::size_t bytes = (mask_ + 1) * sizeof(Row);
+#if defined(__linux__)
+        // Fresh zero pages, in 2 MiB pages where the kernel allows: every
+        // step touches a row of each model anywhere in the table, and 4 KiB
+        // pages cost a TLB miss on most of them.
+        if (bytes >= kHuge) {
+            size_ = bytes + kHuge;
+            void* m = mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+            if (m == MAP_FAILED) throw std::bad_alloc();
+            map_ = m;
+            const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(m) + kHuge - 1) & ~(kHuge - 1);
+            madvise(reinterpret_cast<void*>(a), bytes, MADV_HUGEPAGE);
+            rows_ = reinterpret_cast<Row*>(a);
+            return;
+        }
+#endif
+        raw_ = std::calloc(bytes + 64, 1);
+        if (!raw_) throw std::bad_alloc();
+        rows_ = reinterpret_cast<Row*>((reinterpret_cast<std::uintptr_t>(raw_) + 63) & ~std::uintptr_t{63});
+    }
+    RowTable(const RowTable&) = delete;
+    RowTable& operator=(const RowTable&) = delete;
+    ~RowTable() {
+#if defined(__linux__)
+        if (map_) munmap(map_, size_);
+#endif
+        std::free(raw_);
+    }
+
+    void prefetch(std::uint64_t h) const { __builtin_prefetch(&rows_[index(h)], 1); }
+    // The row of context hash `h`: the pair's row with its check, else the
+    // one used less, emptied for it (the other's use count decays).
+    Row* find(std::uint64_t h) {
+        const std::size_t i = index(h);
+        const std::uint16_t check = static_cast<std::uint16_t>(((h >> 8) & 0xFFFFu) | 1u);
+        Row* a = &rows_[i];
+        Row* b = a + 1;
+        if (a->check == check) return touch(a);
+        if (b->check == check) return touch(b);
+        Row* victim = b->uses < a->uses ? b : a;
+        Row* other = victim == a ? b : a;
+        other->uses = static_cast<std::uint16_t>(other->uses - (other->uses >> 2));
+        victim->check = check;
+        victim->uses = 0;
+        for (auto& c : victim->p) c = kCounterInit;
+        return touch(victim);
+    }
+
+private:
+    std::size_t index(std::uint64_t h) const { return static_cast<std::size_t>(h >> 40) & mask_ & ~std::size_t{1}; }
+    static Row* touch(Row* r) {
+        r->uses = static_cast<std::uint16_t>(r->uses + (r->uses < 65535));
+        return r;
+    }
+    static constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    std::size_t mask_;
+    void* raw_ = nullptr;
+    void* map_ = nullptr;
+    std::size_t size_ = 0;
+    Row* rows_ = nullptr;
+};
+
+// An adaptive probability map (lpaq1's APM): per row 33 points over the
+// stretched input; the output interpolates the two nearest, the nearer is
+// trained.
+class Apm {
+public:
+    explicit Apm(int rows) : t_(static_cast<std::size_t>(rows) * 33) {
+        // Every row starts the same.
+        for (int j = 0; j < 33; ++j) t_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        for (std::size_t r = 1; r < static_cast<std::size_t>(rows); ++r)
+            std::memcpy(&t_[r * 33], &t_[0], 33 * sizeof(std::uint16_t));
+    }
+    std::int32_t refine(std::int32_t st, std::size_t row) {
+        const std::int32_t pos = std::clamp(st, -2047, 2047) + 2048;
+        const std::int32_t j = pos >> 7, frac = pos & 127;
+        std::uint16_t* r = &t_[row * 33];
+        at_ = &r[j + (frac >> 6)];
+        return (r[j] * (128 - frac) + r[j + 1] * frac) >> 7;
+    }
+    void update(int bit) {
+        const std::int32_t target = bit ? 65535 : 0;
+        *at_ = static_cast<std::uint16_t>(*at_ + ((target - *at_) >> kApmRate));
+    }
+
+private:
+    std::vector<std::uint16_t> t_;
+    std::uint16_t* at_ = nullptr;
+};
+
+constexpr std::uint64_t hash_ctx(int k, std::uint64_t v) {
+    std::uint64_t x = (v + static_cast<std::uint64_t>(k + 1) * 0x9E3779B97F4A7C15ull) * 0xD6E8FEB86659FD93ull;
+    x ^= x >> 32;
+    x *= 0x9E3779B97F4A7C15ull;
+    return x ^ (x >> 29);
+}
+
+int row_bits_for(std::uint64_t nsteps) {
+    const int b = bit_length(nsteps) + 1;
+    return std::clamp(b, kMinRowBits, kMaxRowBits);
+}
+
+using CmCounts = StepCounts;
+
+template <class Io>
+class CmStepCoder : public StepCoderShell<CmStepCoder<Io>, Io> {
+    friend class StepCoderShell<CmStepCoder<Io>, Io>;
+
+public:
+    CmStepCoder(Io& io, std::uint64_t nsteps, StepHistory* shared)
+        : io_(io), rows_(row_bits_for(nsteps)), apm1_(kNodes * 512), apm2_(kNodes * 2 * 24 * 2),
+          own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_) {
+        for (auto& w : weights_) w = kInitWeight;
+        for (auto& r : match_)
+            for (auto& v : r) v = kCounterInit;
+    }
+
+    Point start(const Point& want) {
+        w_.start_chain();
+        return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
+    }
+
+private:
+    template <class I>
+    [[gnu::always_inline]] int code_symbol(I& io, int want, bool at_start_point, bool first, const CmCounts& c) {
+        if (h_.hist.size() + 1 >= kMinMatch) h_.table.prefetch(h_.next_base());
+        int sym;
+        if (c.seen_steps == c.nsteps) {
+            sym = kEndSymbol;  // forced: no bits
+        } else {
+            const int pred = m_.predicted(h_);
+            contexts(pred);
+            const int pe = pred < 0 ? 0 : pred == kEndSymbol ? 1 : 2;
+            if (io.bit(end_[pe][at_start_point][first], want == kEndSymbol)) {
+                sym = kEndSymbol;
+            } else {
+                for (int k = 0; k < kModels; ++k) row_[static_cast<std::size_t>(k)] = rows_.find(hash_[static_cast<std::size_t>(k)]);
+                pred_turn_ = pred >= 0 && pred != kEndSymbol ? (pred - prev_) & 7 : -1;
+                const int t = code_turn(io, (want - prev_) & 7);
+                sym = (prev_ + t) & 7;
+            }
+        }
+        m_.push(h_, sym);
+        if (sym != kEndSymbol) note_turn(sym);
+        return sym;
+    }
+
+    template <class I>
+    [[gnu::always_inline]] int code_turn(I& io, int t) {
+        if (!node(io, 0, t != 0)) return 0;
+        if (!node(io, 1, t != 1 && t != 7)) return node(io, 2, t == 7) ? 7 : 1;
+        if (!node(io, 3, t != 2 && t != 6)) return node(io, 4, t == 6) ? 6 : 2;
+        if (!node(io, 5, t != 4)) return 4;
+        return node(io, 6, t == 5) ? 5 : 3;
+    }
+
+    // One mixed decision of the turn tree.
+    template <class I>
+    [[gnu::always_inline]] int node(I& io, int n, int want) {
+        std::array<std::int32_t, kInputs> x;
+        for (int k = 0; k < kModels; ++k)
+            x[static_cast<std::size_t>(k)] = stretch(counter_p16(row_[static_cast<std::size_t>(k)]->p[n]));
+        // The match model: its turn's bit at this node, as sure as matches
+        // of its length have been.
+        const int expect = pred_turn_ >= 0 ? kPath[static_cast<std::size_t>(pred_turn_)][static_cast<std::size_t>(n)] : -1;
+        const int lb = step_len_bucket(m_.len);
+        std::uint32_t* mm = expect >= 0 ? &match_[lb][n] : nullptr;
+        if (mm) {
+            const std::int32_t st = stretch(counter_p16(*mm));
+            x[kModels] = expect ? st : -st;
+        } else {
+            x[kModels] = 0;
+        }
+        x[kModels + 1] = 256;
+        const int mstate = expect < 0 ? 0 : 1 + expect + 2 * std::min(lb >> 3, 2);
+        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kInputs];
+        std::int32_t* w2 = &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kInputs];
+        const std::int32_t s1 = dot(w1, x), s2 = dot(w2, x);
+        const std::int32_t s = (s1 + s2) >> 1;
+        const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
+        const std::size_t row2 = (static_cast<std::size_t>(n) * 2 * 24 + (expect < 0 ? 0 : 24 * expect) + static_cast<std::size_t>(lb)) * 2 +
+                                 (expect >= 0 ? 1u : 0u);
+        const std::int32_t a2 = apm2_.refine(s, row2);
+        std::int32_t p = (a1 + a2) >> 1;
+        p = std::clamp(p, 32, 65535 - 32);
+        int bit;
+        if constexpr (I::kDecode) {
+            bit = io.rc.decode_p(static_cast<std::uint32_t>(65536 - p));
+        } else {
+            io.rc.encode_p(static_cast<std::uint32_t>(65536 - p), want);
+            bit = want;
+        }
+        train(w1, x, mixdetail::squash(s1), bit);
+        train(w2, x, mixdetail::squash(s2), bit);
+        apm1_.update(bit);
+        apm2_.update(bit);
+        for (int k = 0; k < kModels; ++k) counter_update(row_[static_cast<std::size_t>(k)]->p[n], bit);
+        if (mm) counter_update(*mm, bit == expect);
+        return bit;
+    }
+
+    static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kInputs>& x) {
+        std::int64_t d = 0;
+        for (int k = 0; k < kInputs; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
+        d >>= 16;
+        return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
+    }
+    // Each weight moves by input * error * kMixRate / 2^16 (error of the
+    // mixer's own output, 16-bit), within +-kMaxWeight.
+    static void train(std::int32_t* w, const std::array<std::int32_t, kInputs>& x, std::int32_t out, int bit) {
+        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kMixRate;
+        for (int k = 0; k < kInputs; ++k) {
+            const std::int64_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
+            w[k] = static_cast<std::int32_t>(std::clamp<std::int64_t>(v, -kMaxWeight, kMaxWeight));
+        }
+    }
+
+    // The hashed contexts of the next step (docs/FORMAT.md 1.11.2).
+    void contexts(int pred) {
+        const auto p = static_cast<std::uint64_t>(prev_);
+        const std::uint64_t lo = turns_, hi = turns_hi_;
+        auto order = [&](int n) -> std::uint64_t {  // the last n turns (n <= 24)
+            if (n <= 21) return lo & ((std::uint64_t{1} << (3 * n)) - 1);
+            return ctx_join(lo & ((std::uint64_t{1} << 63) - 1), hi & ((std::uint64_t{1} << (3 * (n - 21))) - 1));
+        };
+        std::size_t k = 0;
+        auto set = [&](std::uint64_t v) {
+            hash_[k] = hash_ctx(static_cast<int>(k), v);
+            rows_.prefetch(hash_[k]);
+            ++k;
+        };
+        set(p << 3 | order(1));
+        set(p << 9 | order(3));
+        set(order(6));
+        set(order(8));
+        set(order(12));
+        set(order(16));
+        set(order(24));
+        // The digital straight segment being drawn: the current run and the
+        // runs and turns before it (a DSS is two run lengths).
+        set(ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w_.run, 63))), w_.runs & 0xFFFFFFu));
+        // Closure: where the chain's start lies.
+        const std::uint64_t where = w_.where();
+        set(ctx_join(where, p << 3 | order(1)));
+        // The match's predicted symbol, its length and the last turns.
+        set(ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
+                     order(2)));
+        // The position relative to the chain's start, finer (clamped to 64).
+        const std::int64_t cx = std::clamp<std::int64_t>(w_.dx, -64, 64), cy = std::clamp<std::int64_t>(w_.dy, -64, 64);
+        set(ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2)));
+    }
+
+    void note_turn(int sym) {
+        const auto turn = static_cast<unsigned>((sym - prev_) & 7);
+        turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
+        turns_ = (turns_ << 3) | turn;
+        w_.step(sym, turn);
+        prev_ = sym;
+    }
+
+    Io& io_;
+    RowTable rows_;
+    Apm apm1_, apm2_;
+    std::array<std::int32_t, static_cast<std::size_t>(kNodes * 7 + kNodes * 64) * kInputs> weights_;
+    std::array<std::uint64_t, kModels> hash_{};
+    std::array<Row*, kModels> row_{};
+    std::uint32_t match_[24][kNodes];
+    Prob end_[3][2][2];
+    UIntModel start_[2];
+    Prob start_hit_[24];
+    std::unique_ptr<StepHistory> own_;
+    StepHistory& h_;
+    StepMatch m_;
+    int prev_ = 0;
+    int pred_turn_ = -1;
+    std::uint64_t turns_ = 0;     // turns, 3 bits each, latest lowest (across chains)
+    std::uint64_t turns_hi_ = 0;  // the turns before those (turns_ holds 21 whole ones)
+    StepWalk w_;
+};
+
+}  // namespace
+
+std::string write_cm_step_model(const Block& block, const WindowView* window) {
+    if (block.axes != 2) return {};
+    CmCounts c;
+    c.nchains = block.chains.size();
+    for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
+    std::string out;
+    put_u8(out, kMixedStepCm);
+    put_varint(out, c.nchains);
+    put_varint(out, c.nsteps);
+    put_layout(out, block.layout);
+    EncIo io;
+    auto coder = std::make_unique<CmStepCoder<EncIo>>(io, c.nsteps, nullptr);
+    if (window) coder->prime(*window);
+    if (!encode_step_chains(*coder, block, c)) return {};
+    out += io.rc.finish();
+    return out;
+}
+
+Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
+                                const std::string& where, const WindowView* window, StepHistory* running) {
+    Cursor cur(payload);
+    if (axes != 2)
+        return make_error(Errc::corrupt, where + " byte 0: step-model block on " + std::to_string(axes) + " axes");
+    unsigned kind;
+    if (!cur.u8(kind) || kind != kMixedStepCm)
+        return make_error(Errc::corrupt, where + " byte 0: not a context-mixing step model");
+    CmCounts c;
+    if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
+    if (c.nchains > kMaxBlockChains || c.nsteps > kMaxBlockSteps)
+        return make_error(Errc::limit, where + " byte 0: payload declares more chains or steps than the limits");
+    auto layout = get_layout(cur, where);
+    if (!layout) return std::move(layout).error();
+    const std::size_t base = cur.pos();
+    DecIo io(payload.substr(base));
+    auto coder = std::make_unique<CmStepCoder<DecIo>>(io, c.nsteps, window ? running : nullptr);
+    if (window && !running) coder->prime(*window);
+    start_output(out, expand, axes, std::move(*layout));
+    return decode_step_chains(*coder, io, c, expand, out, counts, base, where);
+}
+
+}  // namespace stepzip::stz

@@ -1,0 +1,198 @@
+// The context-mixing step model (block type 6, model byte 4; docs/FORMAT.md
+// 1.11.2): it round-trips with and without a window, 8- and 4-connected,
+// and on the decoder's running history of a frame; its payload bytes of a
+// small fixed input are pinned; the decoder's errors name the payload byte;
+// every flipped bit of its stream decodes or is corrupt; the strong levels
+// write it on glyph contours and keep the segment model on plots; a block
+// of other than two axes gets none.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "../src/container/block_codec.hpp"
+#include "../src/container/encoder.hpp"
+#include "../src/container/modeled_block.hpp"
+#include "../src/container/window.hpp"
+#include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
+#include "support/pinned_bytes.hpp"
+
+namespace stepzip::stz {
+namespace {
+
+using test::corpus_block;
+using test::fixed_block;
+using test::hex;
+
+// The model bytes of a frame's type 6 blocks, in order.
+std::vector<unsigned> mixed_model_bytes(const std::string& frame) {
+    std::vector<unsigned> out;
+    std::size_t pos = kFrameHeaderSize;
+    while (pos < frame.size() && frame[pos] != 0) {
+        const unsigned t = static_cast<unsigned char>(frame[pos++]) & 7u;
+        std::uint64_t size = 0;
+        for (int shift = 0;; shift += 7) {
+            const unsigned char b = static_cast<unsigned char>(frame[pos++]);
+            size |= static_cast<std::uint64_t>(b & 0x7Fu) << shift;
+            if (!(b & 0x80u)) break;
+        }
+        if (t == kChains || t == kRaw)  // decoded size
+            while (static_cast<unsigned char>(frame[pos++]) & 0x80u) {
+            }
+        if (t == kMixedModel) out.push_back(static_cast<unsigned char>(frame[pos]));
+        pos += static_cast<std::size_t>(size) + kBlockChecksumSize;
+    }
+    return out;
+}
+
+Block decode(const std::string& payload, const WindowView* view) {
+    Block out;
+    BlockCounts counts;
+    auto r = read_step_model(payload, 2, true, out, counts, "t", view, kFormatVersion, nullptr, true);
+    EXPECT_TRUE(r.ok()) << r.error().message;
+    return out;
+}
+
+// The first `lines` lines of corpora/`rel`.
+std::string corpus_text(const char* rel, std::size_t lines) {
+    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
+    std::string out, line;
+    for (std::size_t i = 0; i < lines && std::getline(f, line); ++i) out += line + '\n';
+    EXPECT_FALSE(out.empty()) << rel;
+    return out;
+}
+
+TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours) {
+    for (const char* file : {"glyphs/liberation-8.fc", "glyphs/dejavu-4.fc", "traced/icons-4.fc"}) {
+        SCOPED_TRACE(file);
+        const Block all = corpus_block(file, 40000);
+        Block first, second;
+        first.axes = second.axes = 2;
+        for (std::size_t i = 0; i < all.chains.size(); ++i)
+            (i < all.chains.size() / 2 ? first : second).chains.push_back(all.chains[i]);
+        auto w = std::make_shared<WindowBlock>();
+        add_steps(*w, first);
+        const WindowView window{w};
+        const std::string alone = write_cm_step_model(second);
+        const std::string primed = write_cm_step_model(second, &window);
+        ASSERT_FALSE(alone.empty());
+        EXPECT_EQ(static_cast<unsigned char>(alone[0]), kMixedStepCm);
+        EXPECT_EQ(decode(alone, nullptr).chains, second.chains);
+        EXPECT_EQ(decode(primed, &window).chains, second.chains);
+        // The window's steps are worth something to the match model.
+        EXPECT_LT(primed.size(), alone.size());
+        // Smaller than the mixed step model of the same block.
+        EXPECT_LT(alone.size(), write_mixed_step_model(second, 1).size());
+    }
+}
+
+// Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.11.2).
+TEST(CmStepModel, PayloadBytesArePinned) {
+    const Block b = fixed_block("0 0 0000100001000010000\n5 -3 22223222232222\n");
+    EXPECT_EQ(hex(write_cm_step_model(b)), "04 02 21 00 00 03 df 66 59 43 97 61 76 97 35 56 a7");
+}
+
+TEST(CmStepModel, DecoderErrorsNameThePayloadByte) {
+    const Block b = corpus_block("glyphs/c059-8.fc", 4000);
+    const std::string payload = write_cm_step_model(b);
+    Block out;
+    BlockCounts counts;
+    // Cut short: the error is at or before the payload's end.
+    const std::string cut = payload.substr(0, payload.size() - 1);
+    auto r = read_step_model(cut, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::corrupt);
+    EXPECT_EQ(r.error().message.rfind("blk byte ", 0), 0u) << r.error().message;
+    // A byte too many: the stream does not end at the payload's end.
+    r = read_step_model(payload + '\0', 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::corrupt);
+    // On three axes: corrupt at byte 0.
+    r = read_step_model(payload, 3, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message.rfind("blk byte 0: ", 0), 0u) << r.error().message;
+    // More steps declared than the limit.
+    std::string big = payload.substr(0, 1);
+    put_varint(big, 1);
+    put_varint(big, kMaxBlockSteps + 1);
+    big += payload.substr(big.size());
+    r = read_step_model(big, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().code, Errc::limit);
+    // Not two axes: the encoder writes none.
+    Block three;
+    three.axes = 3;
+    EXPECT_TRUE(write_cm_step_model(three).empty());
+}
+
+// Every bit of the range-coded stream flipped: the reader decodes some
+// chains or reports a corrupt payload byte; never anything else.
+TEST(CmStepModel, EveryStreamBitFlipDecodesOrIsCorrupt) {
+    const Block b = fixed_block(corpus_text("glyphs/c059-8.fc", 4));
+    const std::string payload = write_cm_step_model(b);
+    ASSERT_FALSE(payload.empty());
+    // model byte, then nchains, nsteps and the layout's two sizes (0: no layout)
+    std::size_t header = 1;
+    for (int field = 0; field < 4; ++field)
+        while (static_cast<unsigned char>(payload[header++]) & 0x80u) {
+        }
+    int rejected = 0;
+    for (std::size_t k = header; k < payload.size(); ++k)
+        for (int bit = 0; bit < 8; ++bit) {
+            std::string bad = payload;
+            bad[k] = static_cast<char>(static_cast<unsigned char>(bad[k]) ^ (1u << bit));
+            Block out;
+            BlockCounts counts;
+            auto r = read_step_model(bad, 2, true, out, counts, "blk", nullptr, kFormatVersion, nullptr, true);
+            if (r.ok()) continue;
+            ++rejected;
+            EXPECT_EQ(r.error().code, Errc::corrupt) << r.error().message;
+            EXPECT_EQ(r.error().message.rfind("blk byte ", 0), 0u) << r.error().message;
+        }
+    EXPECT_GT(rejected, 0);
+}
+
+// Frames of several blocks, each flagged `window` but the first: the
+// decoder codes them on its running history of the frame.
+TEST(CmStepModel, StrongLevelsWriteItOnContoursAndTheFramesDecode) {
+    const std::string glyphs = corpus_text("glyphs/liberation-8.fc", 200) + corpus_text("glyphs/liberation-8.fc", 200);
+    for (const int threads : {1, 2}) {
+        CompressOptions opt;
+        opt.level = 19;
+        opt.block_steps = 6000;
+        opt.threads = threads;
+        auto z = compress(glyphs, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, glyphs);
+        const auto models = mixed_model_bytes(*z);
+        EXPECT_GT(std::count(models.begin(), models.end(), kMixedStepCm), 1) << "threads " << threads;
+        // Below the strong levels: never.
+        opt.level = 9;
+        auto fast = compress(glyphs, opt);
+        ASSERT_TRUE(fast.ok());
+        EXPECT_TRUE(mixed_model_bytes(*fast).empty());
+    }
+}
+
+TEST(CmStepModel, PlotsKeepTheSegmentModel) {
+    const std::string plot = corpus_text("plotter/hershey-grbl.fc", 300);
+    CompressOptions opt;
+    opt.level = 19;
+    auto z = compress(plot, opt);
+    ASSERT_TRUE(z.ok()) << z.error().message;
+    const auto models = mixed_model_bytes(*z);
+    ASSERT_FALSE(models.empty());
+    EXPECT_EQ(std::count(models.begin(), models.end(), kMixedStepCm), 0);
+    auto back = decompress(*z);
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    EXPECT_EQ(*back, plot);
+}
+
+}  // namespace
+}  // namespace stepzip::stz
