@@ -364,11 +364,11 @@ private:
     }
 
     Io& io_;
+    TickTables& t_;
     int minor_;
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
     int leader_ = -1;
-    TickTables& t_;
     std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
     std::array<int, kMinor> sign_{};
     std::array<std::int64_t, kMinor> since_{}, gap_{};
