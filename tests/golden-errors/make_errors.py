@@ -255,12 +255,22 @@ files.update({
     # A coding that is neither 0 (plain) nor 1 (mixed predictions).
     'v2_timed_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(timed, t_payload + 1, 2))),
 })
+
+
+def first_extended_block(name, subtype, second):
+    """The bytes of tests/golden/v2/NAME and where its first block's payload
+    starts; that block must be of type 7 with SUBTYPE and payload byte 1
+    SECOND."""
+    data = open(os.path.join(here, '..', 'golden', 'v2', name), 'rb').read()
+    assert data[8] & 7 == 7, 'v2/%s should start with an extended block' % name
+    _, at = varint_at(data, 9)
+    assert data[at] == subtype and data[at + 1] == second, 'v2/%s: subtype %d, byte 1 %d' % (name, subtype, second)
+    return data, at
+
+
 # Block type 7 subtype 2, the tick block (docs/FORMAT.md 1.13), from
 # tests/golden/v2/tick.steps.stz: its first block is a tick block.
-tick = open(os.path.join(here, '..', 'golden', 'v2', 'tick.steps.stz'), 'rb').read()
-assert tick[8] & 7 == 7, 'v2/tick.steps.stz should start with an extended block'
-k_csize, k_payload = varint_at(tick, 9)
-assert tick[k_payload] == 2 and tick[k_payload + 1] == 0
+tick, k_payload = first_extended_block('tick.steps.stz', 2, 0)
 files.update({
     # A coding that is neither 0 (plain) nor 1 (mixed predictions).
     'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 2))),
@@ -283,10 +293,7 @@ files.update({
 # Block type 7 subtype 4, the table block with unpredicted minor totals
 # (docs/FORMAT.md 1.10.2), from tests/golden/v2/table_raw.fc.stz: its first
 # block is one (subtype 4, flags 1).
-raw = open(os.path.join(here, '..', 'golden', 'v2', 'table_raw.fc.stz'), 'rb').read()
-assert raw[8] & 7 == 7, 'v2/table_raw.fc.stz should start with an extended block'
-r_csize, r_payload = varint_at(raw, 9)
-assert raw[r_payload] == 4 and raw[r_payload + 1] == 1
+raw, r_payload = first_extended_block('table_raw.fc.stz', 4, 1)
 files.update({
     # Flags 3: bit 1 names nothing (1, unpredicted minor totals, is the only value).
     'v2_table_raw_flags': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(raw, r_payload + 1, 3))),
