@@ -199,6 +199,35 @@ TEST(TickBlock, MixedCodingIsSmallerOnAControllerLog) {
     EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
 }
 
+// Steps whose intervals jitter in a repeating pattern around a rate that
+// ramps (an interrupt period sampled at a coarser tick): no straight line
+// holds them, the mixed coding's interval contexts see them (more than
+// eight intervals per axis, the pattern's shape repeating).
+TEST(TickBlock, JitteredIntervalsRoundTripAndMixedCodingLearnsThem) {
+    Block b;
+    b.axes = 3;
+    Chain c;
+    c.axes = 3;
+    const int jitter[] = {0, -1, 1, 0, 1, -1};
+    std::size_t k = 0, next_x = 0, next_y = 3;
+    for (std::size_t t = 0; t < 40000; ++t) {
+        int d[kMaxAxes] = {1, 0, 0};
+        if (t == next_x) {
+            d[1] = 1;
+            const std::size_t base = 12 + (t / 5000) % 6;  // the rate changes every 5000 ticks
+            next_x = t + static_cast<std::size_t>(static_cast<int>(base) + jitter[k++ % 6]);
+        }
+        if (t == next_y) {
+            d[2] = -1;
+            next_y = t + 29 + (t / 1000) % 2;
+        }
+        c.steps.push_back(make_step(d, 3));
+    }
+    b.chains.push_back(std::move(c));
+    for (const bool mixed : {false, true}) EXPECT_EQ(round_trip(b, mixed).chains, b.chains) << "mixed " << mixed;
+    EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
+}
+
 TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
     for (std::uint32_t seed : {1u, 2u}) {
         const std::string log = controller_log(seed);

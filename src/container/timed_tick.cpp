@@ -276,6 +276,7 @@ public:
         sign_.fill(1);
         since_.fill(0);
         gap_.fill(0);
+        for (auto& g : gaps_) g.fill(0);
         leader_ = -1;
         history_ = 0;
     }
@@ -320,6 +321,9 @@ public:
                 mix_context(io_, 3, ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
                 mix_context(io_, 4, ctx_join(ctx_join(ax, 5), (static_cast<std::uint64_t>(fa) << 2) | static_cast<std::uint64_t>(ba)));
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
+                const auto& g = gaps_[ua];
+                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), (static_cast<std::uint64_t>(trend(since_[ua] + 1, g)) << 4) | static_cast<std::uint64_t>(fa)));
+                mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
             }
             const int step = io_.bit(t_.axis[ua].step[ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
@@ -329,7 +333,7 @@ public:
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
                 if constexpr (kMixedIo<Io>) {
                     io_.field(2);
-                    for (int k = 0; k < kMixBaseModels; ++k)
+                    for (int k = 0; k < kMixMaxModels; ++k)
                         mix_context(io_, k, ctx_join(ctx_join(static_cast<std::uint64_t>(a), 16 + static_cast<std::uint64_t>(k)),
                                                      capped(since_[ua])));
                 }
@@ -344,6 +348,9 @@ public:
             const auto ua = static_cast<std::size_t>(a);
             if ((m >> a) & 1u) {
                 gap_[ua] = since_[ua] + 1;
+                auto& g = gaps_[ua];
+                for (std::size_t j = g.size() - 1; j > 0; --j) g[j] = g[j - 1];
+                g[0] = gap_[ua];
                 since_[ua] = 0;
             } else {
                 ++since_[ua];
@@ -356,6 +363,28 @@ public:
 
 private:
     static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
+    // Mixed coding, the intervals of an axis `g` (latest first, 0: none):
+    // a step now (after `next` ticks) against the next interval
+    // extrapolated from the last eight (two means of four and their
+    // change: constant acceleration), in quarter ticks and clamped, with
+    // the extrapolation's fraction of a tick in quarters; 0 before eight.
+    static int trend(std::int64_t next, const std::array<std::int64_t, 8>& g) {
+        if (g[7] == 0) return 0;
+        const std::int64_t s1 = g[0] + g[1] + g[2] + g[3], s2 = g[4] + g[5] + g[6] + g[7];
+        const std::int64_t pred = 8 * s1 + 5 * (s1 - s2);  // in 1/32 tick
+        const int d = clamp_int(dss::floor_div(32 * next - pred, 8), -12, 12) + 12;
+        const int frac = static_cast<int>((pred & 31) / 8);  // pred mod 32, in quarters
+        return 1 + d * 4 + frac;
+    }
+    // The shape of the last intervals, whatever the rate (a jitter that
+    // repeats): a step now (after `next` ticks) against the last interval,
+    // and each of the last four intervals against the one before, clamped.
+    static std::uint64_t pattern(std::int64_t next, const std::array<std::int64_t, 8>& g) {
+        std::uint64_t v = static_cast<std::uint64_t>(clamp_int(next - g[0], -8, 8) + 8);
+        for (std::size_t j = 0; j + 1 < 4; ++j)
+            v = v * 8 + static_cast<std::uint64_t>(g[j + 1] == 0 ? 7 : clamp_int(g[j] - g[j + 1], -3, 3) + 3);
+        return v;
+    }
     // Ticks per step of axis a: its last interval, or the time it has
     // rested when longer; unknown before its second step.
     std::int64_t key(int a) const {
@@ -372,6 +401,7 @@ private:
     std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
     std::array<int, kMinor> sign_{};
     std::array<std::int64_t, kMinor> since_{}, gap_{};
+    std::array<std::array<std::int64_t, 8>, kMinor> gaps_{};  // each axis's last eight intervals, latest first
 };
 
 
@@ -425,7 +455,7 @@ std::string write_tick_block(const Block& block, bool mixed) {
     put_layout(out, block.layout);
     auto tables = std::make_unique<TickTables>();
     if (mixed) {
-        MixPredictor pred(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+        MixPredictor pred(reinterpret_cast<const Prob*>(tables.get()), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
         write_ticks(io, *tables, block);
@@ -459,7 +489,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     const std::size_t base = cur.pos();
     auto tables = std::make_unique<TickTables>();
     std::unique_ptr<MixPredictor> pred;
-    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(tables.get()), kMixBaseModels);
+    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(tables.get()), kMixMaxModels);
     Io io = [&] {
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));
