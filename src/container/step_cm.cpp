@@ -230,7 +230,8 @@ private:
         } else {
             const int pred = m_.predicted(h_);
             contexts(pred);
-            prefetch_straight_on();
+            if constexpr (I::kDecode) prefetch_after(prev_);
+            else if (want != kEndSymbol) prefetch_after(want);
             const int pe = pred < 0 ? 0 : pred == kEndSymbol ? 1 : 2;
             if (io.bit(end_[pe][at_start_point][first], want == kEndSymbol)) {
                 sym = kEndSymbol;
@@ -307,12 +308,15 @@ private:
         return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
     }
     // Each weight moves by input * error * kMixRate / 2^16 (error of the
-    // mixer's own output, 16-bit), within +-kMaxWeight.
+    // mixer's own output, 16-bit), within +-kMaxWeight. In 32 bits: |input|
+    // <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
+    static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
+                  kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
     static void train(std::int32_t* w, const std::array<std::int32_t, kInputs>& x, std::int32_t out, int bit) {
-        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kMixRate;
+        const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
         for (int k = 0; k < kInputs; ++k) {
-            const std::int64_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
-            w[k] = static_cast<std::int32_t>(std::clamp<std::int64_t>(v, -kMaxWeight, kMaxWeight));
+            const std::int32_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
+            w[k] = std::clamp(v, -kMaxWeight, kMaxWeight);
         }
     }
 
@@ -366,18 +370,20 @@ private:
         });
     }
 
-    // The rows the step after this one reads if this one goes straight on
-    // (most steps do), prefetched while this one is coded: a row is a cache
-    // miss, and the contexts are known only a few instructions before it
-    // is read. The match model's context, unknown yet, is left out.
+    // The rows the step after this one reads if this one is `sym`,
+    // prefetched while this one is coded: a row is a cache miss, and the
+    // contexts are known only a few instructions before it is read. The
+    // decoder guesses straight on (most steps are); the encoder knows. The
+    // match model's context, unknown yet, is left out.
     struct SkipPred {
         const RowTable* rows;
         void operator()(int, std::uint64_t h) const { rows->prefetch(h); }
     };
-    [[gnu::always_inline]] void prefetch_straight_on() const {
+    [[gnu::always_inline]] void prefetch_after(int sym) const {
+        const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
         StepWalk w = w_;
-        w.step(prev_, 0);
-        context_hashes(prev_, turns_ << 3, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_});
+        w.step(sym, static_cast<unsigned>(turn));
+        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_});
     }
 
     void note_turn(int sym) {
