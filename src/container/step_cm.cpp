@@ -13,9 +13,9 @@
 // only, so any decoder that follows FORMAT.md reproduces every probability.
 // Complexity: one plain bit and 0-4 mixed bits per step (eleven hashed
 // models each; one mixed bit for a step straight on), one cache line per
-// model and step (0.3-0.6 us a step on the development machine); memory 32
-// bytes per hashed row, 2^12..2^21 rows by the block's step count
-// (FORMAT.md), plus the step history.
+// model and step, fetched while the step before is coded (0.3-0.6 us a step
+// on the development machine); memory 32 bytes per hashed row, 2^12..2^21
+// rows by the block's step count (FORMAT.md), plus the step history.
 #include <algorithm>
 #include <array>
 #include <cstdlib>
