@@ -13,15 +13,16 @@
 // only, so any decoder that follows FORMAT.md reproduces every probability.
 // Complexity: one plain bit and 0-4 mixed bits per step (eleven hashed
 // models each; one mixed bit for a step straight on), one cache line per
-// model and step (0.3-0.6 us a step on the development machine); memory 32
-// bytes per hashed row, 2^12..2^21 rows by the block's step count
-// (FORMAT.md), plus the step history.
+// model and step, fetched while the step before is coded (0.3-0.6 us a step
+// on the development machine); memory 32 bytes per hashed row, 2^12..2^21
+// rows by the block's step count (FORMAT.md), plus the step history.
 #include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <new>
+#include <type_traits>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -229,6 +230,8 @@ private:
         } else {
             const int pred = m_.predicted(h_);
             contexts(pred);
+            if constexpr (I::kDecode) prefetch_after(prev_);
+            else if (want != kEndSymbol) prefetch_after(want);
             const int pe = pred < 0 ? 0 : pred == kEndSymbol ? 1 : 2;
             if (io.bit(end_[pe][at_start_point][first], want == kEndSymbol)) {
                 sym = kEndSymbol;
@@ -305,27 +308,34 @@ private:
         return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
     }
     // Each weight moves by input * error * kMixRate / 2^16 (error of the
-    // mixer's own output, 16-bit), within +-kMaxWeight.
+    // mixer's own output, 16-bit), within +-kMaxWeight. In 32 bits: |input|
+    // <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
+    static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
+                  kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
     static void train(std::int32_t* w, const std::array<std::int32_t, kInputs>& x, std::int32_t out, int bit) {
-        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kMixRate;
+        const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
         for (int k = 0; k < kInputs; ++k) {
-            const std::int64_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
-            w[k] = static_cast<std::int32_t>(std::clamp<std::int64_t>(v, -kMaxWeight, kMaxWeight));
+            const std::int32_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
+            w[k] = std::clamp(v, -kMaxWeight, kMaxWeight);
         }
     }
 
-    // The hashed contexts of the next step (docs/FORMAT.md 1.11.2).
-    void contexts(int pred) {
-        const auto p = static_cast<std::uint64_t>(prev_);
-        const std::uint64_t lo = turns_, hi = turns_hi_;
+    // The hashed contexts of a step (docs/FORMAT.md 1.11.2) after the turns
+    // `lo` (latest lowest) and `hi`, the last step `prev` and the walk `w`,
+    // with the match predicting `pred` after `mlen` right symbols: emit(k,
+    // hash of model k) in order. Model kPredModel alone reads pred and mlen.
+    static constexpr int kPredModel = 9;
+    template <class Emit>
+    [[gnu::always_inline]] static void context_hashes(int prev, std::uint64_t lo, std::uint64_t hi, const StepWalk& w,
+                                                      int pred, std::uint64_t mlen, Emit&& emit) {
+        const auto p = static_cast<std::uint64_t>(prev);
         auto order = [&](int n) -> std::uint64_t {  // the last n turns (n <= 24)
             if (n <= 21) return lo & ((std::uint64_t{1} << (3 * n)) - 1);
             return ctx_join(lo & ((std::uint64_t{1} << 63) - 1), hi & ((std::uint64_t{1} << (3 * (n - 21))) - 1));
         };
-        std::size_t k = 0;
+        int k = 0;
         auto set = [&](std::uint64_t v) {
-            hash_[k] = hash_ctx(static_cast<int>(k), v);
-            rows_.prefetch(hash_[k]);
+            emit(k, hash_ctx(k, v));
             ++k;
         };
         set(p << 3 | order(1));
@@ -337,16 +347,43 @@ private:
         set(order(24));
         // The digital straight segment being drawn: the current run and the
         // runs and turns before it (a DSS is two run lengths).
-        set(ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w_.run, 63))), w_.runs & 0xFFFFFFu));
+        set(ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w.run, 63))), w.runs & 0xFFFFFFu));
         // Closure: where the chain's start lies.
-        const std::uint64_t where = w_.where();
+        const std::uint64_t where = w.where();
         set(ctx_join(where, p << 3 | order(1)));
         // The match's predicted symbol, its length and the last turns.
-        set(ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
-                     order(2)));
+        if constexpr (!std::is_same_v<std::decay_t<Emit>, SkipPred>)
+            set(ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(mlen)),
+                         order(2)));
+        else
+            ++k;
         // The position relative to the chain's start, finer (clamped to 64).
-        const std::int64_t cx = std::clamp<std::int64_t>(w_.dx, -64, 64), cy = std::clamp<std::int64_t>(w_.dy, -64, 64);
+        const std::int64_t cx = std::clamp<std::int64_t>(w.dx, -64, 64), cy = std::clamp<std::int64_t>(w.dy, -64, 64);
         set(ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2)));
+    }
+
+    // The contexts of the next step, their rows prefetched.
+    [[gnu::always_inline]] void contexts(int pred) {
+        context_hashes(prev_, turns_, turns_hi_, w_, pred, m_.len, [this](int k, std::uint64_t h) {
+            hash_[static_cast<std::size_t>(k)] = h;
+            rows_.prefetch(h);
+        });
+    }
+
+    // The rows the step after this one reads if this one is `sym`,
+    // prefetched while this one is coded: a row is a cache miss, and the
+    // contexts are known only a few instructions before it is read. The
+    // decoder guesses straight on (most steps are); the encoder knows. The
+    // match model's context, unknown yet, is left out.
+    struct SkipPred {
+        const RowTable* rows;
+        void operator()(int, std::uint64_t h) const { rows->prefetch(h); }
+    };
+    [[gnu::always_inline]] void prefetch_after(int sym) const {
+        const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
+        StepWalk w = w_;
+        w.step(sym, static_cast<unsigned>(turn));
+        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_});
     }
 
     void note_turn(int sym) {
