@@ -19,6 +19,31 @@ using detail::emit_two_letter;
 using detail::fill_steps;
 using detail::other_ticks;
 
+// The step bits of `axis` moving in the direction of delta[axis].
+Step axis_bits(const Point& delta, int axis) {
+    return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis));
+}
+
+// Whether a minor axis of s steps under l leading steps, phase f0, is in the
+// exact range of the division rule (or its function is degenerate: s = 0 or
+// s = l); the same bound as leading_two_axis_into's.
+bool phase_exact(std::int64_t l, std::int64_t s, std::int64_t f0) {
+    return s == 0 || s == l || (f0 >= -s && f0 < l - s);
+}
+
+// Whether multiaxis_fast writes the steps of `delta` with `phases` (a run of
+// at most 8 ticks on more than two axes, or every minor phase exact).
+bool multiaxis_fast_applies(const Point& delta, int axes, const std::int64_t* phases) {
+    const int lead = leading_axis(delta, axes);
+    const std::int64_t l = std::llabs(delta[lead]);
+    if (axes != 2 && l <= 8) return true;
+    for (int i = 0, j = 0; i < axes; ++i) {
+        if (i == lead) continue;
+        if (!phase_exact(l, std::llabs(delta[i]), phases[j++])) return false;
+    }
+    return true;
+}
+
 // More axes, each minor axis by the rule of emit_two_letter (letter "moves"
 // at the ticks found by division, else "rests"): the run of leading-axis
 // steps is written at once, then each minor axis's moves are or-ed into
@@ -29,13 +54,10 @@ using detail::other_ticks;
 bool emit_minor_axes(const Point& delta, int lead, std::int64_t l, const int* minor, const std::int64_t* s,
                      const std::int64_t* f0, int nminor, Step* o) {
     for (int j = 0; j < nminor; ++j)
-        if (s[j] != 0 && s[j] != l && (f0[j] < -s[j] || f0[j] >= l - s[j])) return false;
-    const auto bits = [&](int axis) {
-        return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis));
-    };
-    fill_steps(o, l, bits(lead));
+        if (!phase_exact(l, s[j], f0[j])) return false;
+    fill_steps(o, l, axis_bits(delta, lead));
     for (int j = 0; j < nminor; ++j) {
-        const Step b = bits(minor[j]);
+        const Step b = axis_bits(delta, minor[j]);
         if (s[j] == 0) continue;
         if (s[j] == l) {
             for (std::int64_t t = 0; t < l; ++t) o[t] = static_cast<Step>(o[t] | b);
@@ -65,14 +87,13 @@ bool multiaxis_fast(const Point& delta, int axes, const std::int64_t* phases, St
     if (l <= 8) {
         // Short runs: the rule of multiaxis_linear a tick at a time (exact
         // for every phase), cheaper than the divisions.
-        const auto bits = [&](int axis) { return static_cast<Step>((delta[axis] < 0 ? 3u : 1u) << (2 * axis)); };
         std::int64_t f[kMaxAxes];
         Step b[kMaxAxes];
         for (int j = 0; j < nminor; ++j) {
             f[j] = phases[j];
-            b[j] = bits(minor[j]);
+            b[j] = axis_bits(delta, minor[j]);
         }
-        const Step lb = bits(lead);
+        const Step lb = axis_bits(delta, lead);
         for (std::int64_t t = 0; t < l; ++t) {
             Step st = lb;
             for (int j = 0; j < nminor; ++j) {
@@ -153,10 +174,10 @@ void multiaxis_linear(const Point& delta, int axes, const std::int64_t* phases,
                       std::vector<Step>& out, MultiAxisVariant variant) {
     const int lead = leading_axis(delta, axes);
     const std::int64_t l = std::llabs(delta[lead]);
-    if (variant == MultiAxisVariant::standard) {
-        const std::size_t base = out.size();
-        if (multiaxis_fast(delta, axes, phases, append_room(out, l))) return;
-        out.resize(base);
+    // The buffer grows only when a fast path writes it.
+    if (variant == MultiAxisVariant::standard && multiaxis_fast_applies(delta, axes, phases)) {
+        multiaxis_fast(delta, axes, phases, append_room(out, l));
+        return;
     }
     int minor[kMaxAxes];
     std::int64_t s[kMaxAxes], f[kMaxAxes];
