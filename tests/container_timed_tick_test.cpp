@@ -93,6 +93,29 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
         }
 }
 
+// A thread's contexts are reused by its next block, reset and sized to that
+// block's axes: a block codes to the same bytes after blocks of more and of
+// fewer axes (plain and mixed), and each decodes.
+TEST(TickBlock, ContextsReusedAcrossBlocksCodeEveryBlockAsAFreshOne) {
+    std::mt19937 rng(11);
+    std::vector<Block> blocks;
+    for (int axes : {3, kMaxAxes, 2, 4}) {
+        Block b;
+        b.axes = axes;
+        b.chains.push_back(timed_chain(rng, axes, 4000, Point{}));
+        blocks.push_back(std::move(b));
+    }
+    for (const bool mixed : {false, true}) {
+        std::vector<std::string> first;
+        for (const Block& b : blocks) first.push_back(stz::write_tick_block(b, mixed));
+        for (std::size_t round = 0; round < 2; ++round)
+            for (std::size_t i = blocks.size(); i-- > 0;) {  // in the other order
+                EXPECT_EQ(stz::write_tick_block(blocks[i], mixed), first[i]) << "block " << i << " mixed " << mixed;
+                EXPECT_EQ(round_trip(blocks[i], mixed).chains, blocks[i].chains);
+            }
+    }
+}
+
 TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
     Block empty;
     empty.axes = 3;

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "modeled_block.hpp"
@@ -251,16 +253,73 @@ constexpr int kMinor = kMaxAxes - 1;  // axes besides time
 constexpr int kSinceBuckets = 16;
 
 /// Every adaptive context of a tick block, in the order of FORMAT.md 1.13
-/// "Slots" (a mixed decision's slot is its context's index here).
-struct TickTables {
-    UIntModel start, length;
+/// "Slots" (a mixed decision's slot is its context's index here): the
+/// chain headers' models, then those of each axis besides time, for as many
+/// axes as the block has (778 KB an axis). The memory is kept per thread and
+/// reused by its next block (TickTablesLease).
+class TickTables {
+public:
+    struct Head {
+        UIntModel start, length;
+    };
     struct Axis {
         std::array<Prob, std::size_t{8} * Follower::kContexts> step;
         std::array<Prob, kSinceBuckets> dir;
     };
-    std::array<Axis, kMinor> axis;
+    static_assert(sizeof(Head) % sizeof(Prob) == 0 && sizeof(Axis) % sizeof(Prob) == 0 &&
+                  alignof(Head) == alignof(Prob) && alignof(Axis) == alignof(Prob));
+
+    /// Every context at its initial value, for `minor` (0..kMinor) axes
+    /// besides time.
+    void reset(int minor) {
+        const std::size_t bytes = offset(minor);
+        if (bytes > size_) {
+            mem_ = std::make_unique<std::byte[]>(bytes);
+            size_ = bytes;
+        }
+        head_ = ::new (mem_.get()) Head{};
+        for (int a = 0; a < minor; ++a) axis_[static_cast<std::size_t>(a)] = ::new (mem_.get() + offset(a)) Axis{};
+    }
+    Head& head() { return *head_; }
+    Axis& axis(std::size_t a) { return *axis_[a]; }
+    /// The first context (slot 0).
+    const Prob* base() const { return reinterpret_cast<const Prob*>(head_); }
+
+    bool busy = false;
+
+private:
+    static std::size_t offset(int a) { return sizeof(Head) + static_cast<std::size_t>(a) * sizeof(Axis); }
+    std::unique_ptr<std::byte[]> mem_;
+    std::size_t size_ = 0;
+    Head* head_ = nullptr;
+    std::array<Axis*, kMinor> axis_{};
 };
-static_assert(sizeof(TickTables) % sizeof(Prob) == 0);
+
+/// The tables of one block, reset for `minor` axes besides time: the
+/// thread's own when free (a block after another reuses their memory), else
+/// tables of its own.
+class TickTablesLease {
+public:
+    explicit TickTablesLease(int minor) {
+        thread_local TickTables shared;
+        if (shared.busy) {
+            own_ = std::make_unique<TickTables>();
+            t_ = own_.get();
+        } else {
+            t_ = &shared;
+        }
+        t_->busy = true;
+        t_->reset(minor);
+    }
+    TickTablesLease(const TickTablesLease&) = delete;
+    TickTablesLease& operator=(const TickTablesLease&) = delete;
+    ~TickTablesLease() { t_->busy = false; }
+    TickTables& operator*() const { return *t_; }
+
+private:
+    std::unique_ptr<TickTables> own_;
+    TickTables* t_;
+};
 
 /// The tick model of one block, shared by the encoder (EncIo) and the
 /// decoder (DecIo). Not thread-safe.
@@ -325,7 +384,7 @@ public:
                 mix_context(io_, 6, ctx_join(ctx_join(ax, 7), (static_cast<std::uint64_t>(trend(since_[ua] + 1, g)) << 4) | static_cast<std::uint64_t>(fa)));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
             }
-            const int step = io_.bit(t_.axis[ua].step[ctx], static_cast<int>((mask >> a) & 1u));
+            const int step = io_.bit(t_.axis(ua).step[ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
             if (ba != 0) bres_[ua].push(step, ba);
             if (i == 0) lead_step = step;
@@ -337,7 +396,7 @@ public:
                         mix_context(io_, k, ctx_join(ctx_join(static_cast<std::uint64_t>(a), 16 + static_cast<std::uint64_t>(k)),
                                                      capped(since_[ua])));
                 }
-                const int flip = io_.bit(t_.axis[ua].dir[static_cast<std::size_t>(sb)],
+                const int flip = io_.bit(t_.axis(ua).dir[static_cast<std::size_t>(sb)],
                                          static_cast<int>(((neg >> a) & 1u) != (sign_[ua] < 0)));
                 if (flip) sign_[ua] = -sign_[ua];
                 m |= 1u << a;
@@ -418,10 +477,10 @@ void write_ticks(Io& io, TickTables& t, const Block& block) {
     for (const Chain& chain : block.chains) {
         io.field(3);
         for (int a = 0; a < axes; ++a)  // modulo 2^64, as the decoder adds it back
-            code_sint(io, t.start,
+            code_sint(io, t.head().start,
                       static_cast<std::int64_t>(static_cast<std::uint64_t>(chain.start[a]) -
                                                 static_cast<std::uint64_t>(ref[a])));
-        code_uint(io, t.length, chain.steps.size());
+        code_uint(io, t.head().length, chain.steps.size());
         coder.start_chain();
         for (const Step s : chain.steps) {
             unsigned mask = 0, neg = 0;
@@ -453,9 +512,9 @@ std::string write_tick_block(const Block& block, bool mixed) {
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
-    auto tables = std::make_unique<TickTables>();
+    const TickTablesLease tables(axes - 1);
     if (mixed) {
-        MixPredictor pred(reinterpret_cast<const Prob*>(tables.get()), kMixMaxModels);
+        MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
         write_ticks(io, *tables, block);
@@ -487,9 +546,9 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
-    auto tables = std::make_unique<TickTables>();
+    const TickTablesLease tables(std::clamp(axes - 1, 0, kMinor));
     std::unique_ptr<MixPredictor> pred;
-    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>(reinterpret_cast<const Prob*>(tables.get()), kMixMaxModels);
+    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>((*tables).base(), kMixMaxModels);
     Io io = [&] {
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));
@@ -505,8 +564,8 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     for (std::uint64_t i = 0; i < nchains; ++i) {
         Point d{};
         io.field(3);
-        for (int a = 0; a < axes; ++a) d[a] = code_sint(io, t.start, 0);
-        const std::uint64_t n = code_uint(io, t.length, 0);
+        for (int a = 0; a < axes; ++a) d[a] = code_sint(io, t.head().start, 0);
+        const std::uint64_t n = code_uint(io, t.head().length, 0);
         if (io.failed || io.rc.overrun()) return fail("bad chain header");
         Chain chain;
         chain.axes = axes;
