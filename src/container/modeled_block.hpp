@@ -112,7 +112,9 @@ const char* next_chain_start(Coder& coder, Io& io, const Point& ref, int axes, C
 /// Layout field shared by both models: varint decoded size, varint stored
 /// size, stored bytes (verbatim when the sizes are equal, else one zstd frame).
 void put_layout(std::string& out, std::string_view layout);
-/// Reads the layout field at `cur`. Errors: Errc::corrupt, Errc::limit.
+/// Reads the layout field at `cur`. Errors: Errc::corrupt, Errc::limit, each
+/// naming the payload byte after `where` (a damaged zstd frame: the field's
+/// first byte).
 Result<std::string> get_layout(Cursor& cur, const std::string& where);
 
 }  // namespace stepzip::stz

@@ -794,6 +794,7 @@ bool rebuild_start(const Point& ref, const Point& delta, int axes, Point& start)
 }
 
 Result<std::string> get_layout(Cursor& cur, const std::string& where) {
+    const std::size_t at = cur.pos();
     std::uint64_t size, stored;
     if (!cur.varint(size) || !cur.varint(stored))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad layout sizes");
@@ -803,7 +804,8 @@ Result<std::string> get_layout(Cursor& cur, const std::string& where) {
     if (stored > size || !cur.bytes(static_cast<std::size_t>(stored), bytes))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad layout");
     if (stored == size) return std::string(bytes);
-    return unzstd(bytes, static_cast<std::uint32_t>(size), where + " layout");
+    // A damaged zstd layout: at the layout field's first byte.
+    return unzstd(bytes, static_cast<std::uint32_t>(size), where + " byte " + std::to_string(at) + ": layout");
 }
 
 namespace {

@@ -1087,14 +1087,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         return error(Errc::limit, raw_minors ? 2 : 0, "payload declares more chains, segments or steps than the limits");
     if (!cur.varint(h.grid) || h.grid == 0 || h.grid > (std::uint64_t{1} << 62))
         return error(Errc::corrupt, cur.pos(), "bad start grid");
-    const std::size_t layout_at = cur.pos();
     auto layout = get_layout(cur, where);
-    if (!layout) {
-        // A damaged zstd layout names no byte: name the layout field's.
-        const std::string& m = layout.error().message;
-        if (m.rfind(where + " byte ", 0) == 0) return std::move(layout).error();
-        return error(layout.error().code, layout_at, m.substr(std::min(m.size(), where.size() + 1)));
-    }
+    if (!layout) return std::move(layout).error();
     std::array<DecodeTable, kTables> tables;
     std::uint64_t used;
     const std::size_t used_at = cur.pos();

@@ -277,6 +277,29 @@ files.update({
     # Subtype 1 names no block (0 timed, 2 tick).
     'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 1))),
 })
+
+
+def damaged_layout(frame, pay, at):
+    """`frame` whose first block's payload starts at PAY and has its layout
+    field at payload byte AT: that field replaced by one declaring a
+    compressed layout (size 100, 4 stored bytes) whose bytes are no zstd
+    frame, the payload size and block checksum redone."""
+    csize, _ = varint_at(frame, 9)
+    payload = frame[pay:pay + csize]
+    size, p = varint_at(payload, at)
+    stored, p = varint_at(payload, p)
+    new = payload[:at] + put_varint(100) + put_varint(4) + b'\x00' * 4 + payload[p + stored:]
+    body = frame[8:9] + put_varint(len(new)) + new
+    return frame[:8] + body + struct.pack('<I', check32(body)) + frame[pay + csize + 4:]
+
+
+_, k_at = varint_at(tick, k_payload + 2)  # nchains
+_, k_at = varint_at(tick, k_at)           # nsteps: the layout field follows
+files.update({
+    # A compressed layout that is no zstd frame: at the layout field.
+    'v2_tick_layout': ('corrupt', 'byte 8 (block 0) payload byte %d' % (k_at - k_payload),
+                       damaged_layout(tick, k_payload, k_at - k_payload)),
+})
 # Arc items (docs/FORMAT.md 1.10.1), from tests/golden/v2/arcs_eval.fc.stz:
 # one table block that codes arcs (table-set bit 53, then the method byte).
 _, payloadA, arc_block, set_atA = first_table_block('arcs_eval.fc.stz')
@@ -324,6 +347,13 @@ files.update({
     # payload's end (at the added byte).
     'v2_cm_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % c_csize,
                          cm_block(cm[c_payload:c_end] + b'\x00')),
+})
+_, c_at = varint_at(cm, c_payload + 1)  # nchains
+_, c_at = varint_at(cm, c_at)           # nsteps: the layout field follows
+files.update({
+    # A compressed layout that is no zstd frame: at the layout field.
+    'v2_cm_layout': ('corrupt', 'byte 8 (block 0) payload byte %d' % (c_at - c_payload),
+                     damaged_layout(cm, c_payload, c_at - c_payload)),
 })
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
