@@ -25,13 +25,16 @@
 #include "stepzip/segmenter.hpp"
 #include "stepzip/vectors.hpp"
 #include "../src/container/arc_items.hpp"
+#include "../src/container/modeled_block.hpp"
 #include "../src/container/table_block.hpp"
+#include "../src/container/timed_block.hpp"
+#include "../src/container/timed_tick.hpp"
 
 namespace stepzip::fuzz {
 
 /// The target names, as used for fuzz/seeds/<name> and tests/regressions/<name>.
 inline constexpr std::string_view kTargets[] = {"container", "freeman",   "points", "steps",
-                                                "vectors",   "roundtrip", "arc"};
+                                                "vectors",   "roundtrip", "arc",    "payload"};
 
 /// Errors a chain-file or vector reader may report for bad text.
 inline bool reader_error(Errc e) {
@@ -466,6 +469,64 @@ inline std::string arc_target(const std::uint8_t* data, std::size_t size) {
     return {};
 }
 
+/// A block payload given straight to its decoder, past the block checksum
+/// that the `container` target's mutations seldom get through. Byte 0 picks
+/// the decoder (mod 8): 0 tick block, 1 table block (type 5), 2 table block
+/// with unpredicted minor totals (type 7 subtype 4), 3 step model, 4 mixed
+/// step model (model bytes 1 and 3, and 4: the context-mixing one), 5
+/// segment model, 6 mixed segment model, 7 type 7 by its subtype (timed,
+/// tick); byte 1 the profile (bits 0-2, mod 5) and the axis count (bits
+/// 3-5: 2 plus that mod the profile's range, as a frame header allows); the
+/// rest is the payload. The decoder must give a block whose chains agree
+/// with its counts, or a documented error naming the payload byte; decoding
+/// without expanding must accept or reject it the same way.
+inline std::string payload_target(const std::uint8_t* data, std::size_t size) {
+    if (size < 2) return {};
+    const unsigned kind = data[0] % 8u;
+    const auto p = static_cast<Profile>((data[1] & 7u) % 5u);
+    const int axes = 2 + static_cast<int>((data[1] >> 3) & 7u) % (profile_max_axes(p) - 1);
+    const std::string_view payload(reinterpret_cast<const char*>(data) + 2, size - 2);
+    auto decode = [&](bool expand, Block& out, stz::BlockCounts& counts) -> Result<void> {
+        switch (kind) {
+            case 0: return stz::read_tick_block(payload, axes, expand, out, counts, "fuzz");
+            case 1: return stz::read_table_block(payload, p, axes, expand, out, counts, "fuzz");
+            case 2:
+                return stz::read_table_block(payload, p, axes, expand, out, counts, "fuzz", nullptr, nullptr,
+                                             stz::kExtended);
+            case 3: return stz::read_step_model(payload, axes, expand, out, counts, "fuzz");
+            case 4:
+                return stz::read_step_model(payload, axes, expand, out, counts, "fuzz", nullptr, kFormatVersion,
+                                            nullptr, true);
+            case 5: return stz::read_segment_model(payload, p, axes, expand, out, counts, "fuzz");
+            case 6: return stz::read_segment_model(payload, p, axes, expand, out, counts, "fuzz", nullptr, nullptr, false, true);
+            default: return stz::read_extended_block(payload, p, axes, expand, out, counts, "fuzz");
+        }
+    };
+    Block out;
+    stz::BlockCounts counts;
+    const auto r = decode(true, out, counts);
+    Block bare;
+    stz::BlockCounts bare_counts;
+    const auto again = decode(false, bare, bare_counts);
+    if (r.ok() != again.ok()) return "the decoder accepts or rejects differently without expanding";
+    if (!r) {
+        const Error& e = r.error();
+        if (e.code != Errc::corrupt && e.code != Errc::limit) return "undocumented error " + describe(e);
+        if (e.message.rfind("fuzz byte ", 0) != 0) return "error does not name the payload byte: " + e.message;
+        return {};
+    }
+    std::uint64_t steps = 0;
+    for (const Chain& c : out.chains) {
+        if (c.axes != axes) return "a chain of another axis count";
+        steps += c.steps.size();
+    }
+    if (out.chains.size() != counts.chains || steps != counts.steps) return "decoded chains disagree with the counts";
+    if (bare_counts.chains != counts.chains || bare_counts.steps != counts.steps ||
+        bare_counts.segments != counts.segments)
+        return "counts differ without expanding";
+    return {};
+}
+
 /// Runs target `name` on one input; nullopt for an unknown name.
 inline std::optional<std::string> run_target(std::string_view name, const std::uint8_t* d,
                                              std::size_t n) {
@@ -476,6 +537,7 @@ inline std::optional<std::string> run_target(std::string_view name, const std::u
     if (name == "vectors") return vectors_target(d, n);
     if (name == "roundtrip") return roundtrip_target(d, n);
     if (name == "arc") return arc_target(d, n);
+    if (name == "payload") return payload_target(d, n);
     return std::nullopt;
 }
 
