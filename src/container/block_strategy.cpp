@@ -167,8 +167,9 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // The strong levels try the context-mixing step model (docs/FORMAT.md
 // 1.11.2) on two-axis blocks against the mixed coding of the model the
 // first pass chose, before zstd's blocks: on a block of more than
-// kCmSampleSteps steps both code its whole chains spread over it
-// (spread_chains(), about kCmSampleSteps steps, no window); the step
+// kCmSampleSteps steps both code about kCmSampleSteps steps spread over it
+// (no window): a segment-model block's whole chains (spread_chains(), with
+// their cut), a step-model block's stretches (sample_of()); the step
 // model is then coded from the window in the second pass
 // (window_step_pass()) for the whole block. At -L 19 on corpora/ it made
 // every glyph and traced file 8-33 % smaller and was taken on one plot
@@ -468,12 +469,11 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
                 if (representable(first, p, first.axes)) candidates.push_back(p);
         } else {
             const Block small = sample_of(first, kSampleSteps);
-            const Block& probe = small;
             std::size_t sizes[std::size(kAllProfiles)];
             std::size_t least = SIZE_MAX;
             for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
                 const Profile p = kAllProfiles[i];
-                sizes[i] = representable(first, p, first.axes) ? trial_size(probe, p, s) : SIZE_MAX;
+                sizes[i] = representable(first, p, first.axes) ? trial_size(small, p, s) : SIZE_MAX;
                 least = std::min(least, sizes[i]);
             }
             for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)

@@ -11,8 +11,9 @@
 // before is repeated steps, whatever cut a segment model would give it.
 // One template (CmStepCoder<Io>) runs both directions; integer arithmetic
 // only, so any decoder that follows FORMAT.md reproduces every probability.
-// Complexity: one plain bit and 0-4 mixed bits per step (eleven hashed
-// models each; one mixed bit for a step straight on), one cache line per
+// Complexity: one plain bit and 0-5 mixed bits per step (eleven hashed
+// models each; one mixed bit for a step straight on, five for a turn of
+// +-135 degrees), one cache line per
 // model and step, fetched while the step before is coded (0.3-0.6 us a step
 // on the development machine); memory 32 bytes per hashed row, 2^12..2^21
 // rows by the block's step count (FORMAT.md), plus the step history.
