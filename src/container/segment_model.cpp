@@ -928,8 +928,9 @@ Result<void> read_segment_model_with(std::string_view payload, Profile p, int ax
         return make_error(Errc::limit, where + " byte 0: payload declares more chains, segments or "
                                                "steps than the limits");
     std::uint64_t grid;
+    const std::size_t grid_at = cur.pos();
     if (!cur.varint(grid) || grid == 0 || grid > (std::uint64_t{1} << 62))
-        return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad start grid");
+        return make_error(Errc::corrupt, where + " byte " + std::to_string(grid_at) + ": bad start grid");
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();

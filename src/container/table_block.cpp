@@ -1085,8 +1085,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         return error(Errc::corrupt, cur.pos(), "bad payload header");
     if (h.nchains > kMaxBlockChains || h.nsegments > kMaxBlockSteps || h.nsteps > kMaxBlockSteps)
         return error(Errc::limit, raw_minors ? 2 : 0, "payload declares more chains, segments or steps than the limits");
+    const std::size_t grid_at = cur.pos();
     if (!cur.varint(h.grid) || h.grid == 0 || h.grid > (std::uint64_t{1} << 62))
-        return error(Errc::corrupt, cur.pos(), "bad start grid");
+        return error(Errc::corrupt, grid_at, "bad start grid");
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     std::array<DecodeTable, kTables> tables;

@@ -172,6 +172,22 @@ def put_varint(v):
     return bytes(out)
 
 
+# The segment-model block of v2/plotter.fc.stz with start grid 0 (at least
+# 1; section 1.5: nchains, nsegments, nsteps, then the grid): at the grid
+# field.
+g_csize, g_pay = varint_at(good2, 9)
+g_payload = good2[g_pay:g_pay + g_csize]
+g_at = 0
+for _ in range(3):
+    _, g_at = varint_at(g_payload, g_at)
+g_new = g_payload[:g_at] + put_varint(0) + g_payload[varint_at(g_payload, g_at)[1]:]
+g_body = good2[8:9] + put_varint(len(g_new)) + g_new
+files.update({
+    'v2_segment_grid': ('corrupt', 'byte 8 (block 0) payload byte %d' % g_at,
+                        good2[:8] + g_body + struct.pack('<I', check32(g_body)) + good2[g_pay + g_csize + 4:]),
+})
+
+
 # Block type 6 (docs/FORMAT.md 1.11), from tests/golden/v2/strong_hershey.fc.stz:
 # one mixed-model block of the segment model, no window.
 strong = open(os.path.join(here, '..', 'golden', 'v2', 'strong_hershey.fc.stz'), 'rb').read()
@@ -242,6 +258,15 @@ files.update({
                            table_block(payloadT[:rans_at] + put_varint(len(payloadT)) + payloadT[after:])),
     # A byte after the extra bits: every bit is read where the payload ended.
     'v2_table_extra_byte': ('corrupt', whereT % len(payloadT), table_block(payloadT + b'\x00')),
+})
+grid_at = 0
+for _ in range(3):  # nchains, nsegments, nsteps: the start grid follows
+    _, grid_at = varint_at(payloadT, grid_at)
+grid_end = varint_at(payloadT, grid_at)[1]
+files.update({
+    # Start grid 0 (at least 1): at the grid field.
+    'v2_table_grid': ('corrupt', whereT % grid_at,
+                      table_block(payloadT[:grid_at] + put_varint(0) + payloadT[grid_end:])),
 })
 # Block type 7 subtype 0, the timed block (docs/FORMAT.md 1.12), from
 # tests/golden/v2/timed.steps.stz: its first block is a timed block.
