@@ -185,8 +185,10 @@ inline std::string freeman_target(const std::uint8_t* d, std::size_t n) {
 inline std::string points_target(const std::uint8_t* d, std::size_t n) {
     return chain_file_target(InputFormat::points, d, n);
 }
+/// The steps format, or with bit 6 of the first byte the same bytes read
+/// timed (time as axis 0: the timed and tick blocks of the encoder).
 inline std::string steps_target(const std::uint8_t* d, std::size_t n) {
-    return chain_file_target(InputFormat::steps, d, n);
+    return chain_file_target(n > 0 && (d[0] & 0x40) ? InputFormat::timed : InputFormat::steps, d, n);
 }
 
 /// G-code, HP-GL and SVG readers: the first byte picks G-code or HP-GL and
