@@ -175,17 +175,18 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
 constexpr std::uint64_t kCmSampleSteps = 1u << 16;
 
-// The fast levels from kFastStepLevel try the light context-mixing step
+// The fast levels from kLightCmLevel try the light context-mixing step
 // model (docs/FORMAT.md 1.11.3) on two-axis blocks that are coded by a model
 // or a table block, the same way: on the block's sample against the first
 // pass's coding of it, kept when at least 1/kLightCmGain smaller there (it
-// decodes a few times slower than the segment model: a block that gains
-// less keeps the faster coding); docs/benchmarks.md "The light step model".
+// decodes a few times slower than a table block: a block that gains less
+// keeps the faster coding); docs/benchmarks.md "The light step model".
+constexpr int kLightCmLevel = 2;
 constexpr std::size_t kLightCmGain = 32;
 
 bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
     const Block& block = job.block;
-    if (s.thorough || s.level < kFastStepLevel || s.timed || block.axes != 2 || job.steps == 0 ||
+    if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
         job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
         return false;
     auto wins = [](std::size_t light, std::size_t other) { return light * kLightCmGain < other * (kLightCmGain - 1); };
