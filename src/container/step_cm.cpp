@@ -206,6 +206,8 @@ using CmCounts = StepCounts;
 // weight set and no probability map. Chosen on glyphs-big.fc and
 // icons-big-8.fc (docs/benchmarks.md "The light step model").
 constexpr std::array<int, 2> kLightSet = {1, 5};
+static_assert(std::none_of(kLightSet.begin(), kLightSet.end(), [](int k) { return k == 7 || k == 8 || k == 10; }),
+              "the light model keeps no walk (StepWalk) for models 7, 8 and 10");
 
 template <class Io, bool Light>
 class CmStepCoder : public StepCoderShell<CmStepCoder<Io, Light>, Io> {
@@ -415,7 +417,7 @@ private:
         const auto turn = static_cast<unsigned>((sym - prev_) & 7);
         turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
-        w_.step(sym, turn);
+        if constexpr (!Light) w_.step(sym, turn);  // (the light models do not read the walk)
         prev_ = sym;
     }
 
