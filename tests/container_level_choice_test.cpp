@@ -57,22 +57,29 @@ TEST(LevelChoice, LargePlotBlockTakesTheSegmentModelFromLevel3) {
     EXPECT_LE(three.frame.size() * 32, two.frame.size() * 31);
 }
 
-TEST(LevelChoice, LevelsBelow3KeepLargeBlocksAsTableBlocks) {
+TEST(LevelChoice, Level1KeepsLargeBlocksAsTableBlocksAndLevel2TakesTheLightStepModel) {
     const std::string input = corpus("glyphs/dejavu-4.fc");  // 301 042 steps
-    for (int level : {1, 2}) {
-        const Coded c = code(input, level);
-        EXPECT_EQ(c.info.segment_model_blocks, 0u) << level;
-        EXPECT_EQ(c.info.table_blocks, c.info.blocks) << level;
+    const Coded one = code(input, 1), two = code(input, 2), three = code(input, 3);
+    EXPECT_EQ(one.info.segment_model_blocks, 0u);
+    EXPECT_EQ(one.info.table_blocks, one.info.blocks);
+    // From level 2 the light step model (a step-model block) on contours,
+    // at least 1/32 smaller than the table block.
+    for (const Coded* c : {&two, &three}) {
+        EXPECT_EQ(c->info.step_model_blocks, c->info.blocks);
+        EXPECT_LE(c->frame.size() * 32, one.frame.size() * 31);
     }
-    EXPECT_EQ(code(input, 3).info.segment_model_blocks, 1u);
 }
 
-TEST(LevelChoice, RepeatedGlyphsStayATableBlock) {
+TEST(LevelChoice, RepeatedGlyphsStayATableBlockAtLevel1) {
     // 84 134 steps: the same page in four Hershey fonts; the table block's
-    // matches over the segment stream find the shared glyphs.
-    const Coded c = code(corpus("plotter/hershey-pages-grbl.fc"), 3);
+    // matches over the segment stream find the shared glyphs. From level 2
+    // the light step model's match finds them too, and is smaller.
+    const std::string input = corpus("plotter/hershey-pages-grbl.fc");
+    const Coded c = code(input, 1), three = code(input, 3);
     EXPECT_EQ(c.info.blocks, 1u);
     EXPECT_EQ(c.info.table_blocks, 1u);
+    EXPECT_EQ(three.info.step_model_blocks, 1u);
+    EXPECT_LT(three.frame.size(), c.frame.size());
 }
 
 TEST(LevelChoice, ManyBlocksRoundTripAndDecodeTheSameAcrossThreads) {

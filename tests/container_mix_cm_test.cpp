@@ -1,10 +1,11 @@
 // The context-mixing step model (block type 6, model byte 4; docs/FORMAT.md
-// 1.11.2): it round-trips with and without a window, 8- and 4-connected,
-// and on the decoder's running history of a frame; its payload bytes of a
-// small fixed input are pinned; the decoder's errors name the payload byte;
-// every flipped bit of its stream decodes or is corrupt; the strong levels
-// write it on glyph contours and keep the segment model on plots; a block
-// of other than two axes gets none.
+// 1.11.2) and its light version (model byte 5, 1.11.3): they round-trip
+// with and without a window, 8- and 4-connected, and on the decoder's
+// running history of a frame; their payload bytes of a small fixed input
+// are pinned; the decoder's errors name the payload byte; every flipped bit
+// of their stream decodes or is corrupt; the strong levels write the full
+// model on glyph contours, levels 2-9 the light one, level 1 neither, and
+// plots keep the segment model; a block of other than two axes gets none.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -66,9 +67,17 @@ std::string corpus_text(const char* rel, std::size_t lines) {
     return out;
 }
 
+using Writer = std::string (*)(const Block&, const WindowView*);
+struct Model {
+    Writer write;
+    unsigned byte;
+};
+const Model kModelsUnderTest[] = {{write_cm_step_model, kMixedStepCm}, {write_light_cm_step_model, kMixedStepCmLight}};
+
 TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours) {
+    for (const Model& model : kModelsUnderTest)
     for (const char* file : {"glyphs/liberation-8.fc", "glyphs/dejavu-4.fc", "traced/icons-4.fc"}) {
-        SCOPED_TRACE(file);
+        SCOPED_TRACE(std::string(file) + " model " + std::to_string(model.byte));
         const Block all = corpus_block(file, 40000);
         Block first, second;
         first.axes = second.axes = 2;
@@ -77,16 +86,16 @@ TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours)
         auto w = std::make_shared<WindowBlock>();
         add_steps(*w, first);
         const WindowView window{w};
-        const std::string alone = write_cm_step_model(second);
-        const std::string primed = write_cm_step_model(second, &window);
+        const std::string alone = model.write(second, nullptr);
+        const std::string primed = model.write(second, &window);
         ASSERT_FALSE(alone.empty());
-        EXPECT_EQ(static_cast<unsigned char>(alone[0]), kMixedStepCm);
+        EXPECT_EQ(static_cast<unsigned char>(alone[0]), model.byte);
         EXPECT_EQ(decode(alone, nullptr).chains, second.chains);
         EXPECT_EQ(decode(primed, &window).chains, second.chains);
         // The window's steps are worth something to the match model.
         EXPECT_LT(primed.size(), alone.size());
-        // Smaller than the mixed step model of the same block.
-        EXPECT_LT(alone.size(), write_mixed_step_model(second, 1).size());
+        // The full model: smaller than the mixed step model of the same block.
+        if (model.byte == kMixedStepCm) EXPECT_LT(alone.size(), write_mixed_step_model(second, 1).size());
     }
 }
 
@@ -94,11 +103,25 @@ TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours)
 TEST(CmStepModel, PayloadBytesArePinned) {
     const Block b = fixed_block("0 0 0000100001000010000\n5 -3 22223222232222\n");
     EXPECT_EQ(hex(write_cm_step_model(b)), "04 02 21 00 00 03 df 66 59 43 97 61 76 97 35 56 a7");
+    EXPECT_EQ(hex(write_light_cm_step_model(b)), "05 02 21 00 00 01 24 ab 26 3b 1e 7e 43 2d 75 57 35 a2 00");
 }
 
-TEST(CmStepModel, DecoderErrorsNameThePayloadByte) {
+// The light model is smaller than the segment model on glyph contours and a
+// few per cent larger than the full model.
+TEST(CmStepModel, LightModelSitsBetweenTheSegmentModelAndTheFullModel) {
+    const Block b = corpus_block("glyphs/dejavu-8.fc", 60000);
+    const std::size_t light = write_light_cm_step_model(b).size(), full = write_cm_step_model(b).size();
+    EXPECT_GT(light, full);
+    EXPECT_LT(light, full + full / 5);
+    EXPECT_LT(light, write_step_model(b, 2).size());
+}
+
+class CmModelErrors : public ::testing::TestWithParam<Model> {};
+INSTANTIATE_TEST_SUITE_P(BothModels, CmModelErrors, ::testing::ValuesIn(kModelsUnderTest));
+
+TEST_P(CmModelErrors, DecoderErrorsNameThePayloadByte) {
     const Block b = corpus_block("glyphs/c059-8.fc", 4000);
-    const std::string payload = write_cm_step_model(b);
+    const std::string payload = GetParam().write(b, nullptr);
     Block out;
     BlockCounts counts;
     // Cut short: the error is at or before the payload's end.
@@ -126,14 +149,14 @@ TEST(CmStepModel, DecoderErrorsNameThePayloadByte) {
     // Not two axes: the encoder writes none.
     Block three;
     three.axes = 3;
-    EXPECT_TRUE(write_cm_step_model(three).empty());
+    EXPECT_TRUE(GetParam().write(three, nullptr).empty());
 }
 
 // Every bit of the range-coded stream flipped: the reader decodes some
 // chains or reports a corrupt payload byte; never anything else.
-TEST(CmStepModel, EveryStreamBitFlipDecodesOrIsCorrupt) {
+TEST_P(CmModelErrors, EveryStreamBitFlipDecodesOrIsCorrupt) {
     const Block b = fixed_block(corpus_text("glyphs/c059-8.fc", 4));
-    const std::string payload = write_cm_step_model(b);
+    const std::string payload = GetParam().write(b, nullptr);
     ASSERT_FALSE(payload.empty());
     // model byte, then nchains, nsteps and the layout's two sizes (0: no layout)
     std::size_t header = 1;
@@ -172,11 +195,23 @@ TEST(CmStepModel, StrongLevelsWriteItOnContoursAndTheFramesDecode) {
         EXPECT_EQ(*back, glyphs);
         const auto models = mixed_model_bytes(*z);
         EXPECT_GT(std::count(models.begin(), models.end(), kMixedStepCm), 1) << "threads " << threads;
-        // Below the strong levels: never.
-        opt.level = 9;
-        auto fast = compress(glyphs, opt);
-        ASSERT_TRUE(fast.ok());
-        EXPECT_TRUE(mixed_model_bytes(*fast).empty());
+        // Levels 2-9: the light model, on every block.
+        for (const int level : {2, 3, 9}) {
+            opt.level = level;
+            auto fast = compress(glyphs, opt);
+            ASSERT_TRUE(fast.ok());
+            auto fast_back = decompress(*fast);
+            ASSERT_TRUE(fast_back.ok()) << fast_back.error().message;
+            EXPECT_EQ(*fast_back, glyphs);
+            const auto light = mixed_model_bytes(*fast);
+            EXPECT_GT(light.size(), 1u) << "level " << level;
+            EXPECT_EQ(std::count(light.begin(), light.end(), kMixedStepCmLight), static_cast<std::ptrdiff_t>(light.size()));
+        }
+        // Level 1: neither.
+        opt.level = 1;
+        auto fastest = compress(glyphs, opt);
+        ASSERT_TRUE(fastest.ok());
+        EXPECT_TRUE(mixed_model_bytes(*fastest).empty());
     }
 }
 
@@ -192,6 +227,11 @@ TEST(CmStepModel, PlotsKeepTheSegmentModel) {
     auto back = decompress(*z);
     ASSERT_TRUE(back.ok()) << back.error().message;
     EXPECT_EQ(*back, plot);
+    // The default level: no light model either.
+    opt.level = 3;
+    z = compress(plot, opt);
+    ASSERT_TRUE(z.ok()) << z.error().message;
+    EXPECT_TRUE(mixed_model_bytes(*z).empty());
 }
 
 }  // namespace

@@ -37,12 +37,14 @@ enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, 
 /// Block type 6 (mixed predictions): the payload's first byte, the model
 /// (bit 0) and the flag kMixedCurvature (bit 1: two more hashed models,
 /// docs/FORMAT.md 1.11.1); or kMixedStepCm, the context-mixing step model
-/// (docs/FORMAT.md 1.11.2).
-inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1, kMixedCurvature = 2, kMixedStepCm = 4;
+/// (docs/FORMAT.md 1.11.2); or kMixedStepCmLight, its light version
+/// (docs/FORMAT.md 1.11.3).
+inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1, kMixedCurvature = 2, kMixedStepCm = 4,
+                          kMixedStepCmLight = 5;
 /// The model (kSegmentModel or kStepModel) a type 6 payload's first byte
 /// names, or kEnd for a byte that names none.
 inline constexpr unsigned mixed_model_of(unsigned byte) {
-    if (byte == kMixedStepCm) return kStepModel;
+    if (byte == kMixedStepCm || byte == kMixedStepCmLight) return kStepModel;
     return byte > (kMixedStep | kMixedCurvature) ? kEnd : (byte & kMixedStep) ? kStepModel : kSegmentModel;
 }
 /// Block flags (version 1: the flags byte; version 2: bits 3.. of the block byte).

@@ -176,6 +176,37 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
 constexpr std::uint64_t kCmSampleSteps = 1u << 16;
 
+// The fast levels from kLightCmLevel try the light context-mixing step
+// model (docs/FORMAT.md 1.11.3) on two-axis blocks that are coded by a model
+// or a table block, the same way: on the block's sample against the first
+// pass's coding of it, kept when at least 1/kLightCmGain smaller there (it
+// decodes a few times slower than a table block: a block that gains less
+// keeps the faster coding); docs/benchmarks.md "The light step model".
+constexpr int kLightCmLevel = 2;
+constexpr std::size_t kLightCmGain = 32;
+
+bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+    const Block& block = job.block;
+    if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
+        job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
+        return false;
+    auto wins = [](std::size_t light, std::size_t other) { return light * kLightCmGain < other * (kLightCmGain - 1); };
+    if (job.steps <= kCmSampleSteps) return wins(write_light_cm_step_model(block).size() + 8, best.size());
+    Block sample;
+    Cut cut;
+    spread_chains(block, job.cut.empty() ? Cut(block.chains.size()) : job.cut, kCmSampleSteps, sample, cut);
+    const std::size_t light = write_light_cm_step_model(sample).size();
+    std::size_t other = 0;
+    if (type == kSegmentModel) other = write_segment_model(sample, s.profile, cut).size();
+    else if (type == kTable) other = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
+    else other = write_step_model(sample, kFastStepOrder).size();
+    if (!wins(light, other)) return false;
+    // A table block's matches reach across the whole block, the sample's
+    // do not (the same glyphs at the same places: 0.875 on the sample, 1.01
+    // on the whole block of pages-big-grbl.fc): against it the whole block.
+    return type != kTable || wins(write_light_cm_step_model(block).size() + 8, best.size());
+}
+
 bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
     const Block& block = job.block;
     if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
@@ -678,6 +709,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
     job.cm = cm_step_model_may_win(job, s, type, best);
+    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best);
+    job.cm = job.cm || job.cm_light;
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
         zstd_may_win(chain_payload, best, true)) {
         std::string rec = make_block_record(kChains, job.flags, chain_payload, s.level);
@@ -751,7 +784,8 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
 // items in the window).
 void cm_pass(BlockJob& job, const WindowView& window) {
     const bool w = !window.empty() && has_symbols(window);
-    const std::string model = write_cm_step_model(job.block, w ? &window : nullptr);
+    const std::string model = job.cm_light ? write_light_cm_step_model(job.block, w ? &window : nullptr)
+                                           : write_cm_step_model(job.block, w ? &window : nullptr);
     if (model.empty() || model.size() > kMaxBlockPayload) {
         job.cm = false;
         return;

@@ -79,6 +79,7 @@ struct BlockJob {
     std::vector<std::vector<Segment>> cut;  ///< segment-model block: the cut coded
     int order = 0;                          ///< step-model block: the context order
     bool cm = false;  ///< the strong levels: coded by the context-mixing step model in the second pass
+    bool cm_light = false;  ///< with cm: the light model (the fast levels)
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
 

@@ -56,7 +56,6 @@ constexpr std::array<std::array<std::int8_t, kNodes>, 8> kPath = {{
 }};
 
 constexpr int kModels = 11;                 // hashed context models
-constexpr int kInputs = kModels + 2;        // + the match model + bias
 constexpr int kCountLimit = 255;            // a counter's rate settles at 1/(limit + 1.5)
 constexpr std::int64_t kMixRate = 3;        // mixer learning rate (see train())
 constexpr std::int32_t kInitWeight = 16384; // 0.25 in 16.16
@@ -203,13 +202,24 @@ int row_bits_for(std::uint64_t nsteps) {
 
 using CmCounts = StepCounts;
 
-template <class Io>
-class CmStepCoder : public StepCoderShell<CmStepCoder<Io>, Io> {
-    friend class StepCoderShell<CmStepCoder<Io>, Io>;
+// The light model (model byte 5, docs/FORMAT.md 1.11.3) keeps models
+// kLightSet of the eleven (orders 3 and 16 turns), the match input, one
+// weight set and no probability map. Chosen on glyphs-big.fc and
+// icons-big-8.fc (docs/benchmarks.md "The light step model").
+constexpr std::array<int, 2> kLightSet = {1, 5};
+static_assert(std::none_of(kLightSet.begin(), kLightSet.end(), [](int k) { return k == 7 || k == 8 || k == 10; }),
+              "the light model keeps no walk (StepWalk) for models 7, 8 and 10");
+
+template <class Io, bool Light>
+class CmStepCoder : public StepCoderShell<CmStepCoder<Io, Light>, Io> {
+    friend class StepCoderShell<CmStepCoder<Io, Light>, Io>;
+    static constexpr int kM = Light ? static_cast<int>(kLightSet.size()) : kModels;  // hashed models used
+    static constexpr int kIn = kM + 2;
+    static constexpr std::size_t kSets = Light ? kNodes * 7 : kNodes * 7 + kNodes * 64;
 
 public:
     CmStepCoder(Io& io, std::uint64_t nsteps, StepHistory* shared)
-        : io_(io), rows_(row_bits_for(nsteps)), apm1_(kNodes * 512), apm2_(kNodes * 2 * 24 * 2),
+        : io_(io), rows_(row_bits_for(nsteps)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
           own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_) {
         for (auto& w : weights_) w = kInitWeight;
         for (auto& r : match_)
@@ -237,7 +247,7 @@ private:
             if (io.bit(end_[pe][at_start_point][first], want == kEndSymbol)) {
                 sym = kEndSymbol;
             } else {
-                for (int k = 0; k < kModels; ++k) row_[static_cast<std::size_t>(k)] = rows_.find(hash_[static_cast<std::size_t>(k)]);
+                for (int k = 0; k < kM; ++k) row_[static_cast<std::size_t>(k)] = rows_.find(hash_[static_cast<std::size_t>(k)]);
                 pred_turn_ = pred >= 0 && pred != kEndSymbol ? (pred - prev_) & 7 : -1;
                 const int t = code_turn(io, (want - prev_) & 7);
                 sym = (prev_ + t) & 7;
@@ -260,8 +270,8 @@ private:
     // One mixed decision of the turn tree.
     template <class I>
     [[gnu::always_inline]] int node(I& io, int n, int want) {
-        std::array<std::int32_t, kInputs> x;
-        for (int k = 0; k < kModels; ++k)
+        std::array<std::int32_t, kIn> x;
+        for (int k = 0; k < kM; ++k)
             x[static_cast<std::size_t>(k)] = stretch(counter_p16(row_[static_cast<std::size_t>(k)]->p[n]));
         // The match model: its turn's bit at this node, as sure as matches
         // of its length have been.
@@ -270,21 +280,26 @@ private:
         std::uint32_t* mm = expect >= 0 ? &match_[lb][n] : nullptr;
         if (mm) {
             const std::int32_t st = stretch(counter_p16(*mm));
-            x[kModels] = expect ? st : -st;
+            x[kM] = expect ? st : -st;
         } else {
-            x[kModels] = 0;
+            x[kM] = 0;
         }
-        x[kModels + 1] = 256;
+        x[kM + 1] = 256;
         const int mstate = expect < 0 ? 0 : 1 + expect + 2 * std::min(lb >> 3, 2);
-        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kInputs];
-        std::int32_t* w2 = &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kInputs];
-        const std::int32_t s1 = dot(w1, x), s2 = dot(w2, x);
-        const std::int32_t s = (s1 + s2) >> 1;
-        const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
-        const std::size_t row2 = (static_cast<std::size_t>(n) * 2 * 24 + (expect < 0 ? 0 : 24 * expect) + static_cast<std::size_t>(lb)) * 2 +
-                                 (expect >= 0 ? 1u : 0u);
-        const std::int32_t a2 = apm2_.refine(s, row2);
-        std::int32_t p = (a1 + a2) >> 1;
+        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kIn];
+        std::int32_t* w2 = Light ? w1 : &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kIn];
+        const std::int32_t s1 = dot(w1, x), s2 = Light ? s1 : dot(w2, x);
+        std::int32_t p;
+        if constexpr (Light) {
+            p = mixdetail::squash(s1);
+        } else {
+            const std::int32_t s = (s1 + s2) >> 1;
+            const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
+            const std::size_t row2 = (static_cast<std::size_t>(n) * 2 * 24 + (expect < 0 ? 0 : 24 * expect) +
+                                      static_cast<std::size_t>(lb)) * 2 + (expect >= 0 ? 1u : 0u);
+            const std::int32_t a2 = apm2_.refine(s, row2);
+            p = (a1 + a2) >> 1;
+        }
         p = std::clamp(p, 32, 65535 - 32);
         int bit;
         if constexpr (I::kDecode) {
@@ -294,17 +309,19 @@ private:
             bit = want;
         }
         train(w1, x, mixdetail::squash(s1), bit);
-        train(w2, x, mixdetail::squash(s2), bit);
-        apm1_.update(bit);
-        apm2_.update(bit);
-        for (int k = 0; k < kModels; ++k) counter_update(row_[static_cast<std::size_t>(k)]->p[n], bit);
+        if constexpr (!Light) {
+            train(w2, x, mixdetail::squash(s2), bit);
+            apm1_.update(bit);
+            apm2_.update(bit);
+        }
+        for (int k = 0; k < kM; ++k) counter_update(row_[static_cast<std::size_t>(k)]->p[n], bit);
         if (mm) counter_update(*mm, bit == expect);
         return bit;
     }
 
-    static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kInputs>& x) {
+    static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kIn>& x) {
         std::int64_t d = 0;
-        for (int k = 0; k < kInputs; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
+        for (int k = 0; k < kIn; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
         d >>= 16;
         return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
     }
@@ -313,9 +330,9 @@ private:
     // <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
     static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
                   kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
-    static void train(std::int32_t* w, const std::array<std::int32_t, kInputs>& x, std::int32_t out, int bit) {
+    static void train(std::int32_t* w, const std::array<std::int32_t, kIn>& x, std::int32_t out, int bit) {
         const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
-        for (int k = 0; k < kInputs; ++k) {
+        for (int k = 0; k < kIn; ++k) {
             const std::int32_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
             w[k] = std::clamp(v, -kMaxWeight, kMaxWeight);
         }
@@ -323,9 +340,16 @@ private:
 
     // The hashed contexts of a step (docs/FORMAT.md 1.11.2) after the turns
     // `lo` (latest lowest) and `hi`, the last step `prev` and the walk `w`,
-    // with the match predicting `pred` after `mlen` right symbols: emit(k,
-    // hash of model k) in order. Model kPredModel alone reads pred and mlen.
+    // with the match predicting `pred` after `mlen` right symbols: emit(i,
+    // hash of model k) for each model k used, i its index among them. Model
+    // kPredModel alone reads pred and mlen.
     static constexpr int kPredModel = 9;
+    static constexpr int slot_of(int k) {
+        if constexpr (!Light) return k;
+        for (std::size_t i = 0; i < kLightSet.size(); ++i)
+            if (kLightSet[i] == k) return static_cast<int>(i);
+        return -1;
+    }
     template <class Emit>
     [[gnu::always_inline]] static void context_hashes(int prev, std::uint64_t lo, std::uint64_t hi, const StepWalk& w,
                                                       int pred, std::uint64_t mlen, Emit&& emit) {
@@ -334,33 +358,36 @@ private:
             if (n <= 21) return lo & ((std::uint64_t{1} << (3 * n)) - 1);
             return ctx_join(lo & ((std::uint64_t{1} << 63) - 1), hi & ((std::uint64_t{1} << (3 * (n - 21))) - 1));
         };
-        int k = 0;
-        auto set = [&](std::uint64_t v) {
-            emit(k, hash_ctx(k, v));
-            ++k;
+        // (the value of a model not used is never computed)
+        auto set = [&]<int K>(std::integral_constant<int, K>, auto value) {
+            if constexpr (slot_of(K) >= 0) emit(slot_of(K), hash_ctx(K, value()));
         };
-        set(p << 3 | order(1));
-        set(p << 9 | order(3));
-        set(order(6));
-        set(order(8));
-        set(order(12));
-        set(order(16));
-        set(order(24));
+        using std::integral_constant;
+        set(integral_constant<int, 0>{}, [&] { return p << 3 | order(1); });
+        set(integral_constant<int, 1>{}, [&] { return p << 9 | order(3); });
+        set(integral_constant<int, 2>{}, [&] { return order(6); });
+        set(integral_constant<int, 3>{}, [&] { return order(8); });
+        set(integral_constant<int, 4>{}, [&] { return order(12); });
+        set(integral_constant<int, 5>{}, [&] { return order(16); });
+        set(integral_constant<int, 6>{}, [&] { return order(24); });
         // The digital straight segment being drawn: the current run and the
         // runs and turns before it (a DSS is two run lengths).
-        set(ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w.run, 63))), w.runs & 0xFFFFFFu));
+        set(integral_constant<int, 7>{}, [&] {
+            return ctx_join(ctx_join(p, static_cast<std::uint64_t>(std::min(w.run, 63))), w.runs & 0xFFFFFFu);
+        });
         // Closure: where the chain's start lies.
-        const std::uint64_t where = w.where();
-        set(ctx_join(where, p << 3 | order(1)));
+        set(integral_constant<int, 8>{}, [&] { return ctx_join(w.where(), p << 3 | order(1)); });
         // The match's predicted symbol, its length and the last turns.
         if constexpr (!std::is_same_v<std::decay_t<Emit>, SkipPred>)
-            set(ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(mlen)),
-                         order(2)));
-        else
-            ++k;
+            set(integral_constant<int, kPredModel>{}, [&] {
+                return ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(mlen)),
+                                order(2));
+            });
         // The position relative to the chain's start, finer (clamped to 64).
-        const std::int64_t cx = std::clamp<std::int64_t>(w.dx, -64, 64), cy = std::clamp<std::int64_t>(w.dy, -64, 64);
-        set(ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2)));
+        set(integral_constant<int, 10>{}, [&] {
+            const std::int64_t cx = std::clamp<std::int64_t>(w.dx, -64, 64), cy = std::clamp<std::int64_t>(w.dy, -64, 64);
+            return ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2));
+        });
     }
 
     // The contexts of the next step, their rows prefetched.
@@ -391,16 +418,16 @@ private:
         const auto turn = static_cast<unsigned>((sym - prev_) & 7);
         turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
-        w_.step(sym, turn);
+        if constexpr (!Light) w_.step(sym, turn);  // (the light models do not read the walk)
         prev_ = sym;
     }
 
     Io& io_;
     RowTable rows_;
     Apm apm1_, apm2_;
-    std::array<std::int32_t, static_cast<std::size_t>(kNodes * 7 + kNodes * 64) * kInputs> weights_;
-    std::array<std::uint64_t, kModels> hash_{};
-    std::array<Row*, kModels> row_{};
+    std::array<std::int32_t, kSets * kIn> weights_;
+    std::array<std::uint64_t, kM> hash_{};
+    std::array<Row*, kM> row_{};
     std::uint32_t match_[24][kNodes];
     Prob end_[3][2][2];
     UIntModel start_[2];
@@ -417,22 +444,33 @@ private:
 
 }  // namespace
 
-std::string write_cm_step_model(const Block& block, const WindowView* window) {
+namespace {
+
+template <bool Light>
+std::string write_cm(const Block& block, const WindowView* window) {
     if (block.axes != 2) return {};
     CmCounts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
     std::string out;
-    put_u8(out, kMixedStepCm);
+    put_u8(out, Light ? kMixedStepCmLight : kMixedStepCm);
     put_varint(out, c.nchains);
     put_varint(out, c.nsteps);
     put_layout(out, block.layout);
     EncIo io;
-    auto coder = std::make_unique<CmStepCoder<EncIo>>(io, c.nsteps, nullptr);
+    auto coder = std::make_unique<CmStepCoder<EncIo, Light>>(io, c.nsteps, nullptr);
     if (window) coder->prime(*window);
     if (!encode_step_chains(*coder, block, c)) return {};
     out += io.rc.finish();
     return out;
+}
+
+}  // namespace
+
+std::string write_cm_step_model(const Block& block, const WindowView* window) { return write_cm<false>(block, window); }
+
+std::string write_light_cm_step_model(const Block& block, const WindowView* window) {
+    return write_cm<true>(block, window);
 }
 
 Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
@@ -441,7 +479,7 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
     if (axes != 2)
         return make_error(Errc::corrupt, where + " byte 0: step-model block on " + std::to_string(axes) + " axes");
     unsigned kind;
-    if (!cur.u8(kind) || kind != kMixedStepCm)
+    if (!cur.u8(kind) || (kind != kMixedStepCm && kind != kMixedStepCmLight))
         return make_error(Errc::corrupt, where + " byte 0: not a context-mixing step model");
     CmCounts c;
     if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
@@ -452,10 +490,17 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
     DecIo io(payload.substr(base));
-    auto coder = std::make_unique<CmStepCoder<DecIo>>(io, c.nsteps, window ? running : nullptr);
-    if (window && !running) coder->prime(*window);
-    start_output(out, expand, axes, std::move(*layout));
-    return decode_step_chains(*coder, io, c, expand, out, counts, base, where);
+    auto run = [&](auto& coder) {
+        if (window && !running) coder.prime(*window);
+        start_output(out, expand, axes, std::move(*layout));
+        return decode_step_chains(coder, io, c, expand, out, counts, base, where);
+    };
+    if (kind == kMixedStepCmLight) {
+        auto coder = std::make_unique<CmStepCoder<DecIo, true>>(io, c.nsteps, window ? running : nullptr);
+        return run(*coder);
+    }
+    auto coder = std::make_unique<CmStepCoder<DecIo, false>>(io, c.nsteps, window ? running : nullptr);
+    return run(*coder);
 }
 
 }  // namespace stepzip::stz

@@ -199,8 +199,8 @@ short = strong[:9] + put_varint(s_csize - 1) + strong[s_payload:s_end - 1]
 short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
 files.update({
     # The model byte names no model (0-3 do: model and curvature flag; 4 the
-    # context-mixing step model).
-    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 5))),
+    # context-mixing step model, 5 its light version).
+    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 6))),
     # The range-coded stream lost its last byte (size and checksum redone):
     # the decoder notices at the payload's end.
     'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
@@ -356,11 +356,17 @@ assert cm[c_payload] == 4, 'v2/cm_glyphs.fc.stz should start with a context-mixi
 c_end = c_payload + c_csize
 
 
+def first_payload_replaced(frame, end, new):
+    """A version-2 frame whose first block ends at `end` (before its
+    checksum), with that block's payload replaced (size and block checksum
+    redone)."""
+    body = frame[8:9] + put_varint(len(new)) + new
+    return frame[:8] + body + struct.pack('<I', check32(body)) + frame[end + 4:]
+
+
 def cm_block(new):
-    """cm_glyphs.fc.stz with its first block's payload replaced (size and
-    block checksum redone)."""
-    body = cm[8:9] + put_varint(len(new)) + new
-    return cm[:8] + body + struct.pack('<I', check32(body)) + cm[c_end + 4:]
+    """cm_glyphs.fc.stz with its first block's payload replaced."""
+    return first_payload_replaced(cm, c_end, new)
 
 
 files.update({
@@ -379,6 +385,24 @@ files.update({
     # A compressed layout that is no zstd frame: at the layout field.
     'v2_cm_layout': ('corrupt', 'byte 8 (block 0) payload byte %d' % (c_at - c_payload),
                      damaged_layout(cm, c_payload, c_at - c_payload)),
+})
+# The light context-mixing step model (docs/FORMAT.md 1.11.3), from
+# tests/golden/v2/light_glyphs.fc.stz: its first block is a type 6 block of
+# model byte 5 (not flagged `window`).
+light = open(os.path.join(here, '..', 'golden', 'v2', 'light_glyphs.fc.stz'), 'rb').read()
+assert light[8] & 7 == 6 and not light[8] & 0x20, 'v2/light_glyphs.fc.stz should start with a mixed-model block'
+l_csize, l_payload = varint_at(light, 9)
+assert light[l_payload] == 5, 'v2/light_glyphs.fc.stz should start with a light context-mixing step model'
+l_end = l_payload + l_csize
+
+
+files.update({
+    # The range-coded stream lost its last byte (at the payload's new end).
+    'v2_light_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (l_csize - 1),
+                              first_payload_replaced(light, l_end, light[l_payload:l_end - 1])),
+    # A byte after the stream's end (at the added byte).
+    'v2_light_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % l_csize,
+                            first_payload_replaced(light, l_end, light[l_payload:l_end] + b'\x00')),
 })
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
