@@ -199,6 +199,16 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
     return type == kTable && whole && write_cm_step_model(block).size() + 8 < best.size();
 }
 
+// A block of more than kCmSampleSteps steps that the context-mixing step
+// model codes well below the segment model is known for one before its
+// segments are cut: on the block's whole chains spread over it (about
+// kCmSampleSteps steps, cut by the level's cuts, as the full choice would)
+// the model must come out at least 1/kCmFirstMargin smaller than the mixed
+// segment model of the smallest cut. Such a block skips the segmenters, the
+// other models and zstd (a third to a half of -L 19's time on glyph
+// contours); others (plots, random walks, near ties) take the full choice.
+constexpr std::size_t kCmFirstMargin = 16;
+
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).
 bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const TableEffort& effort) {
@@ -334,6 +344,30 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
         type = kExtended;
         job.cut = std::move(aligned);
     }
+}
+
+bool cm_step_model_first(const BlockJob& job, const EncoderSettings& s) {
+    const Block& block = job.block;
+    if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
+        job.steps <= kCmSampleSteps || job.steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
+        return false;
+    Block sample;
+    sample.axes = block.axes;
+    spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    Cut segs;
+    SegmentStats stats;
+    const SegmenterKind kind =
+        s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
+    if (!segment_block(sample, s.profile, kind, segs, stats, 0, s.source, s.cut_cache)) return false;
+    std::uint64_t nsegs = 0;
+    for (const auto& v : segs) nsegs += v.size();
+    if (nsegs * 1000 > kStepModelOnly * step_count(sample)) return false;  // the step model's ground
+    std::vector<Cut> cuts = model_cuts(sample, s, std::move(segs), false);
+    std::size_t which = 0;
+    smallest_segment_model(sample, s.profile, cuts, which, false);
+    const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
+    const std::size_t cm = write_cm_step_model(sample).size();
+    return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
 
 }  // namespace
@@ -542,6 +576,24 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool fits = block.axes == s.axes && block.chains.size() <= kMaxBlockChains;
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
+    if (cm_step_model_first(job, s)) {
+        // The step model at order 1 stands in until the second pass codes
+        // the block by the context-mixing model (and stays when that loses).
+        std::string model = write_step_model(block, 1);
+        if (!model.empty() && model.size() <= kMaxBlockPayload) {
+            job.cm = true;
+            job.type = kStepModel;
+            job.order = 1;
+            job.record = make_stored_record(kStepModel, job.flags, model);
+            if (s.window_log != 0) {
+                auto w = std::make_shared<WindowBlock>();
+                w->weight = job.steps + block.chains.size();
+                w->first_type = kStepModel;
+                job.contribution = std::move(w);
+            }
+            return;
+        }
+    }
     bool segment_model_only = false;
     std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
     if (representable(block, s.profile, s.axes)) {
