@@ -355,13 +355,13 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
     Cut segs;
     SegmentStats stats;
-    const SegmenterKind kind =
-        s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
-    if (!segment_block(sample, s.profile, kind, segs, stats, 0, s.source, s.cut_cache)) return false;
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    if (!segment_block(sample, s.profile, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return false;
     std::uint64_t nsegs = 0;
     for (const auto& v : segs) nsegs += v.size();
     if (nsegs * 1000 > kStepModelOnly * step_count(sample)) return false;  // the step model's ground
-    std::vector<Cut> cuts = model_cuts(sample, s, std::move(segs), false);
+    std::vector<Cut> cuts = model_cuts(sample, greedy, std::move(segs), false);
     std::size_t which = 0;
     smallest_segment_model(sample, s.profile, cuts, which, false);
     const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
