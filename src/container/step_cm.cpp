@@ -217,6 +217,7 @@ public:
 
     Point start(const Point& want) {
         w_.start_chain();
+        ahead_sym_ = -1;
         return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
     }
 
@@ -243,6 +244,7 @@ private:
             }
         }
         m_.push(h_, sym);
+        if (sym != ahead_sym_) ahead_sym_ = -1;  // (an END is never guessed)
         if (sym != kEndSymbol) note_turn(sym);
         return sym;
     }
@@ -362,8 +364,19 @@ private:
         set(ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2)));
     }
 
-    // The contexts of the next step, their rows prefetched.
+    // The contexts of the next step, their rows prefetched. When the step
+    // before was the one prefetch_after() guessed, its hashes (all but the
+    // match model's) are those it made, rows fetched already.
     [[gnu::always_inline]] void contexts(int pred) {
+        if (ahead_sym_ >= 0) {
+            hash_ = ahead_;
+            const std::uint64_t h = hash_ctx(
+                kPredModel, ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
+                                     turns_ & 63));
+            hash_[kPredModel] = h;
+            rows_.prefetch(h);
+            return;
+        }
         context_hashes(prev_, turns_, turns_hi_, w_, pred, m_.len, [this](int k, std::uint64_t h) {
             hash_[static_cast<std::size_t>(k)] = h;
             rows_.prefetch(h);
@@ -375,15 +388,21 @@ private:
     // contexts are known only a few instructions before it is read. The
     // decoder guesses straight on (most steps are); the encoder knows. The
     // match model's context, unknown yet, is left out.
+    // Their hashes are kept for the next step's contexts() (ahead_).
     struct SkipPred {
         const RowTable* rows;
-        void operator()(int, std::uint64_t h) const { rows->prefetch(h); }
+        std::array<std::uint64_t, kModels>* keep;
+        void operator()(int k, std::uint64_t h) const {
+            (*keep)[static_cast<std::size_t>(k)] = h;
+            rows->prefetch(h);
+        }
     };
-    [[gnu::always_inline]] void prefetch_after(int sym) const {
+    [[gnu::always_inline]] void prefetch_after(int sym) {
         const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
         StepWalk w = w_;
         w.step(sym, static_cast<unsigned>(turn));
-        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_});
+        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_, &ahead_});
+        ahead_sym_ = sym;
     }
 
     void note_turn(int sym) {
@@ -399,6 +418,8 @@ private:
     Apm apm1_, apm2_;
     std::array<std::int32_t, static_cast<std::size_t>(kNodes * 7 + kNodes * 64) * kInputs> weights_;
     std::array<std::uint64_t, kModels> hash_{};
+    std::array<std::uint64_t, kModels> ahead_{};  // the hashes prefetch_after() made
+    int ahead_sym_ = -1;                           // for a next step of this code (-1: none)
     std::array<Row*, kModels> row_{};
     std::uint32_t match_[24][kNodes];
     Prob end_[3][2][2];
