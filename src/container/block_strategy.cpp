@@ -593,22 +593,18 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
                           s.cm_first_steps == job.steps;
     if (known_cm || cm_step_model_first(block, job.steps, s)) {
-        // The step model at order 1 stands in until the second pass codes
-        // the block by the context-mixing model (and stays when that loses).
-        std::string model = write_step_model(block, 1);
-        if (!model.empty() && model.size() <= kMaxBlockPayload) {
-            job.cm = true;
-            job.type = kStepModel;
-            job.order = 1;
-            job.record = make_stored_record(kStepModel, job.flags, model);
-            if (s.window_log != 0) {
-                auto w = std::make_shared<WindowBlock>();
-                w->weight = job.steps + block.chains.size();
-                w->first_type = kStepModel;
-                job.contribution = std::move(w);
-            }
-            return;
+        // A step-model block, coded by the context-mixing model in the
+        // second pass (cm_pass(); no record until then).
+        job.cm = true;
+        job.type = kStepModel;
+        job.order = 1;
+        if (s.window_log != 0) {
+            auto w = std::make_shared<WindowBlock>();
+            w->weight = job.steps + block.chains.size();
+            w->first_type = kStepModel;
+            job.contribution = std::move(w);
         }
+        return;
     }
     bool segment_model_only = false;
     std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
@@ -820,12 +816,23 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
 void cm_pass(BlockJob& job, const WindowView& window) {
     const bool w = !window.empty() && has_symbols(window);
     const std::string model = write_cm_step_model(job.block, w ? &window : nullptr);
+    if (job.record.empty() && (model.empty() || model.size() > kMaxBlockPayload)) {
+        // (the first pass left the block to this model: the step model at
+        // order 1 takes it instead)
+        const std::string plain = write_step_model(job.block, 1);
+        if (plain.empty() || plain.size() > kMaxBlockPayload) {
+            job.error = make_error(Errc::limit, "block of chain " + std::to_string(job.first_chain + 1) +
+                                                    ": the step model cannot code it");
+            return;
+        }
+        job.record = make_stored_record(kStepModel, job.flags, plain);
+    }
     if (model.empty() || model.size() > kMaxBlockPayload) {
         job.cm = false;
         return;
     }
     std::string rec = make_stored_record(kMixedModel, job.flags | (w ? kFlagWindow : 0u), model);
-    if (rec.size() >= job.record.size()) {
+    if (!job.record.empty() && rec.size() >= job.record.size()) {
         job.cm = false;
         return;
     }
@@ -839,7 +846,7 @@ void cm_pass(BlockJob& job, const WindowView& window) {
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.cm) {
         cm_pass(job, window);
-        if (job.cm) return;
+        if (job.cm || job.error.code != Errc::ok) return;
     }
     if (!wants_window_steps(job, s, window) || !has_symbols(window)) return;
     int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
@@ -947,6 +954,7 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
 }  // namespace
 
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.error.code != Errc::ok) return;
     if (!window.empty()) window_items_pass(job, s, window);
     mixed_pass(job, s, window);
 }
