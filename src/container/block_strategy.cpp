@@ -175,7 +175,10 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
 constexpr std::uint64_t kCmSampleSteps = 1u << 16;
 
-bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+// `sample_cm`: the model's size on the sample of a block over
+// kCmSampleSteps when cm_step_model_first() made it (0: not made).
+bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
+                           std::size_t sample_cm = 0) {
     const Block& block = job.block;
     if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
         return false;
@@ -186,7 +189,8 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
         if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
         const Block& b = whole ? block : sample;
         const Cut& c = whole ? job.cut : cut;
-        return write_cm_step_model(b).size() < write_segment_model(b, s.profile, c, nullptr, false, true).size();
+        const std::size_t cm = !whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        return cm < write_segment_model(b, s.profile, c, nullptr, false, true).size();
     }
     if (type == kStepModel) {
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
@@ -346,7 +350,7 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
-bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s) {
+bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
         steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
         return false;
@@ -366,6 +370,7 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     smallest_segment_model(sample, s.profile, cuts, which, false);
     const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
     const std::size_t cm = write_cm_step_model(sample).size();
+    if (sample_cm) *sample_cm = cm;
     return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
 
@@ -592,7 +597,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     for (const Chain& c : block.chains) job.steps += c.steps.size();
     const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
                           s.cm_first_steps == job.steps;
-    if (known_cm || cm_step_model_first(block, job.steps, s)) {
+    std::size_t sample_cm = 0;  // the model's size on the block's sample, when made
+    if (known_cm || cm_step_model_first(block, job.steps, s, &sample_cm)) {
         // A step-model block, coded by the context-mixing model in the
         // second pass (cm_pass(); no record until then).
         job.cm = true;
@@ -741,7 +747,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     };
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
-    job.cm = cm_step_model_may_win(job, s, type, best);
+    job.cm = cm_step_model_may_win(job, s, type, best, sample_cm);
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
         zstd_may_win(chain_payload, best, true)) {
         std::string rec = make_block_record(kChains, job.flags, chain_payload, s.level);
