@@ -206,9 +206,12 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
 // A block of more than kCmSampleSteps steps that the context-mixing step
 // model codes well below the segment model is known for one before its
 // segments are cut: on the block's whole chains spread over it (about
-// kCmSampleSteps steps, cut by the level's cuts, as the full choice would)
-// the model must come out at least 1/kCmFirstMargin smaller than the mixed
-// segment model of the smallest cut. Such a block skips the segmenters, the
+// kCmSampleSteps steps, cut greedily and at the default phase: the optimal
+// segmenter's recut is most of the time there) the model must come out at
+// least 1/kCmFirstMargin smaller than the mixed segment model of the cut
+// whose plain model is smaller (chosen on glyphs-big.fc, urw-big-*.fc and
+// pages-big-grbl.fc of docs/benchmarks.md; the greedy cut alone gave
+// pages-big-grbl.fc to the model, 7.7 % larger). Such a block skips the segmenters, the
 // other models and zstd (a third to a half of -L 19's time on glyph
 // contours); others (plots, random walks, near ties) take the full choice.
 constexpr std::size_t kCmFirstMargin = 16;
