@@ -4,8 +4,10 @@
 // running history of a frame; their payload bytes of a small fixed input
 // are pinned; the decoder's errors name the payload byte; every flipped bit
 // of their stream decodes or is corrupt; the strong levels write the full
-// model on glyph contours, levels 2-9 the light one, level 1 neither, and
-// plots keep the segment model; a block of other than two axes gets none.
+// model on glyph contours (also on blocks large enough to be chosen for it on
+// a sample before their segments are cut), levels 2-9 the light one, level 1
+// neither, and plots keep the segment model; a block of other than two axes
+// gets none.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -232,6 +234,29 @@ TEST(CmStepModel, PlotsKeepTheSegmentModel) {
     z = compress(plot, opt);
     ASSERT_TRUE(z.ok()) << z.error().message;
     EXPECT_TRUE(mixed_model_bytes(*z).empty());
+}
+
+// A block of more than 2^16 steps whose sample the model codes well below
+// the segment model is left to it before its segments are cut (and a first
+// block of more than 2^17 steps before the profiles' larger trial): glyph
+// contours come out as one context-mixing block that decodes; a plot of the
+// same size keeps the segment model.
+TEST(CmStepModel, LargeBlocksAreChosenBeforeTheirSegmentsAreCut) {
+    const std::string glyphs = corpus_text("glyphs/dejavu-8.fc", 1u << 20);
+    const std::string plot = corpus_text("plotter/hershey-grbl.fc", 1u << 20);
+    for (const std::string* input : {&glyphs, &plot}) {
+        CompressOptions opt;
+        opt.level = 19;
+        auto z = compress(*input, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, *input);
+        const auto models = mixed_model_bytes(*z);
+        ASSERT_EQ(models.size(), 1u);
+        if (input == &glyphs) EXPECT_EQ(models[0], kMixedStepCm);
+        else EXPECT_NE(models[0], kMixedStepCm);
+    }
 }
 
 }  // namespace

@@ -207,7 +207,10 @@ bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned ty
     return type != kTable || wins(write_light_cm_step_model(block).size() + 8, best.size());
 }
 
-bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+// `sample_cm`: the model's size on the sample of a block over
+// kCmSampleSteps when cm_step_model_first() made it (0: not made).
+bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
+                           std::size_t sample_cm = 0) {
     const Block& block = job.block;
     if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
         return false;
@@ -218,7 +221,8 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
         if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
         const Block& b = whole ? block : sample;
         const Cut& c = whole ? job.cut : cut;
-        return write_cm_step_model(b).size() < write_segment_model(b, s.profile, c, nullptr, false, true).size();
+        const std::size_t cm = !whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        return cm < write_segment_model(b, s.profile, c, nullptr, false, true).size();
     }
     if (type == kStepModel) {
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
@@ -230,6 +234,19 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
     // (compress.cpp), so it cannot become a step-model block.
     return type == kTable && whole && write_cm_step_model(block).size() + 8 < best.size();
 }
+
+// A block of more than kCmSampleSteps steps that the context-mixing step
+// model codes well below the segment model is known for one before its
+// segments are cut: on the block's whole chains spread over it (about
+// kCmSampleSteps steps, cut greedily and at the default phase: the optimal
+// segmenter's recut is most of the time there) the model must come out at
+// least 1/kCmFirstMargin smaller than the mixed segment model of the cut
+// whose plain model is smaller (chosen on glyphs-big.fc, urw-big-*.fc and
+// pages-big-grbl.fc of docs/benchmarks.md; the greedy cut alone gave
+// pages-big-grbl.fc to the model, 7.7 % larger). Such a block skips the segmenters, the
+// other models and zstd (a third to a half of -L 19's time on glyph
+// contours); others (plots, random walks, near ties) take the full choice.
+constexpr std::size_t kCmFirstMargin = 16;
 
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).
@@ -366,6 +383,30 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
         type = kExtended;
         job.cut = std::move(aligned);
     }
+}
+
+bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
+    if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
+        steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
+        return false;
+    Block sample;
+    sample.axes = block.axes;
+    spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    Cut segs;
+    SegmentStats stats;
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    if (!segment_block(sample, s.profile, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return false;
+    std::uint64_t nsegs = 0;
+    for (const auto& v : segs) nsegs += v.size();
+    if (nsegs * 1000 > kStepModelOnly * step_count(sample)) return false;  // the step model's ground
+    std::vector<Cut> cuts = model_cuts(sample, greedy, std::move(segs), false);
+    std::size_t which = 0;
+    smallest_segment_model(sample, s.profile, cuts, which, false);
+    const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
+    const std::size_t cm = write_cm_step_model(sample).size();
+    if (sample_cm) *sample_cm = cm;
+    return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
 
 }  // namespace
@@ -510,6 +551,21 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
             for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
                 if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
                     candidates.push_back(kAllProfiles[i]);
+            // At the strong levels, a first block that the context-mixing
+            // step model codes (cm_step_model_first(), under the best
+            // profile of the small sample) keeps that profile: the trial
+            // ranks segment models, which then code none of it (a third of
+            // -L 19's time on a 0.5 MB glyph file).
+            if (candidates.size() > 1) {
+                const std::size_t at = static_cast<std::size_t>(std::find(sizes, sizes + std::size(kAllProfiles), least) - sizes);
+                EncoderSettings probe_settings = s;
+                probe_settings.profile = kAllProfiles[at];
+                if (least != SIZE_MAX && cm_step_model_first(first, steps, probe_settings)) {
+                    candidates.assign(1, kAllProfiles[at]);
+                    s.cm_first_chains = first.chains.size();
+                    s.cm_first_steps = steps;
+                }
+            }
         }
         const bool whole = steps <= kThoroughSampleSteps;
         if (candidates.size() == 1) s.profile = candidates[0];
@@ -573,6 +629,23 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool fits = block.axes == s.axes && block.chains.size() <= kMaxBlockChains;
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
+    const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
+                          s.cm_first_steps == job.steps;
+    std::size_t sample_cm = 0;  // the model's size on the block's sample, when made
+    if (known_cm || cm_step_model_first(block, job.steps, s, &sample_cm)) {
+        // A step-model block, coded by the context-mixing model in the
+        // second pass (cm_pass(); no record until then).
+        job.cm = true;
+        job.type = kStepModel;
+        job.order = 1;
+        if (s.window_log != 0) {
+            auto w = std::make_shared<WindowBlock>();
+            w->weight = job.steps + block.chains.size();
+            w->first_type = kStepModel;
+            job.contribution = std::move(w);
+        }
+        return;
+    }
     bool segment_model_only = false;
     std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
     if (representable(block, s.profile, s.axes)) {
@@ -708,7 +781,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     };
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
-    job.cm = cm_step_model_may_win(job, s, type, best);
+    job.cm = cm_step_model_may_win(job, s, type, best, sample_cm);
     job.cm_light = !job.cm && light_cm_may_win(job, s, type, best);
     job.cm = job.cm || job.cm_light;
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
@@ -786,12 +859,23 @@ void cm_pass(BlockJob& job, const WindowView& window) {
     const bool w = !window.empty() && has_symbols(window);
     const std::string model = job.cm_light ? write_light_cm_step_model(job.block, w ? &window : nullptr)
                                            : write_cm_step_model(job.block, w ? &window : nullptr);
+    if (job.record.empty() && (model.empty() || model.size() > kMaxBlockPayload)) {
+        // (the first pass left the block to this model: the step model at
+        // order 1 takes it instead)
+        const std::string plain = write_step_model(job.block, 1);
+        if (plain.empty() || plain.size() > kMaxBlockPayload) {
+            job.error = make_error(Errc::limit, "block of chain " + std::to_string(job.first_chain + 1) +
+                                                    ": the step model cannot code it");
+            return;
+        }
+        job.record = make_stored_record(kStepModel, job.flags, plain);
+    }
     if (model.empty() || model.size() > kMaxBlockPayload) {
         job.cm = false;
         return;
     }
     std::string rec = make_stored_record(kMixedModel, job.flags | (w ? kFlagWindow : 0u), model);
-    if (rec.size() >= job.record.size()) {
+    if (!job.record.empty() && rec.size() >= job.record.size()) {
         job.cm = false;
         return;
     }
@@ -805,7 +889,7 @@ void cm_pass(BlockJob& job, const WindowView& window) {
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.cm) {
         cm_pass(job, window);
-        if (job.cm) return;
+        if (job.cm || job.error.code != Errc::ok) return;
     }
     if (!wants_window_steps(job, s, window) || !has_symbols(window)) return;
     int order = job.type == kStepModel ? job.order : s.thorough ? thorough_step_order(job.block) : kFastStepOrder;
@@ -913,6 +997,7 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
 }  // namespace
 
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.error.code != Errc::ok) return;
     if (!window.empty()) window_items_pass(job, s, window);
     mixed_pass(job, s, window);
 }

@@ -62,6 +62,10 @@ struct EncoderSettings {
     bool optimal_recut = true;
     /// The frame's chain cuts, shared by its jobs (null: every chain is cut).
     CutCache* cut_cache = nullptr;
+    /// The strong levels: the first block (its chains and steps) was found
+    /// to be the context-mixing step model's when the profiles were ranked
+    /// (set by choose_frame_settings(); 0 chains: not found).
+    std::uint64_t cm_first_chains = 0, cm_first_steps = 0;
 };
 
 /// One block in flight, from the reader to the ordered write.

@@ -13,6 +13,7 @@
 namespace stepzip::stz {
 
 void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
+    if (job.error.code != Errc::ok) return;  // (reported by the caller)
     const std::string where = s.source + ": round-trip proof";
     const RecordView rec = view_record(job.record);
     std::string dec;

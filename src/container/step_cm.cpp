@@ -228,6 +228,7 @@ public:
 
     Point start(const Point& want) {
         w_.start_chain();
+        ahead_sym_ = -1;
         return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
     }
 
@@ -254,6 +255,7 @@ private:
             }
         }
         m_.push(h_, sym);
+        if (sym != ahead_sym_) ahead_sym_ = -1;  // (an END is never guessed)
         if (sym != kEndSymbol) note_turn(sym);
         return sym;
     }
@@ -390,8 +392,21 @@ private:
         });
     }
 
-    // The contexts of the next step, their rows prefetched.
+    // The contexts of the next step, their rows prefetched. When the step
+    // before was the one prefetch_after() guessed, its hashes (all but the
+    // match model's) are those it made, rows fetched already.
     [[gnu::always_inline]] void contexts(int pred) {
+        if (ahead_sym_ >= 0) {
+            hash_ = ahead_;
+            if constexpr (slot_of(kPredModel) >= 0) {
+                const std::uint64_t h = hash_ctx(
+                    kPredModel, ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
+                                         turns_ & 63));
+                hash_[static_cast<std::size_t>(slot_of(kPredModel))] = h;
+                rows_.prefetch(h);
+            }
+            return;
+        }
         context_hashes(prev_, turns_, turns_hi_, w_, pred, m_.len, [this](int k, std::uint64_t h) {
             hash_[static_cast<std::size_t>(k)] = h;
             rows_.prefetch(h);
@@ -403,15 +418,21 @@ private:
     // contexts are known only a few instructions before it is read. The
     // decoder guesses straight on (most steps are); the encoder knows. The
     // match model's context, unknown yet, is left out.
+    // Their hashes are kept for the next step's contexts() (ahead_).
     struct SkipPred {
         const RowTable* rows;
-        void operator()(int, std::uint64_t h) const { rows->prefetch(h); }
+        std::array<std::uint64_t, kM>* keep;
+        void operator()(int k, std::uint64_t h) const {
+            (*keep)[static_cast<std::size_t>(k)] = h;
+            rows->prefetch(h);
+        }
     };
-    [[gnu::always_inline]] void prefetch_after(int sym) const {
+    [[gnu::always_inline]] void prefetch_after(int sym) {
         const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
         StepWalk w = w_;
         w.step(sym, static_cast<unsigned>(turn));
-        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_});
+        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_, &ahead_});
+        ahead_sym_ = sym;
     }
 
     void note_turn(int sym) {
@@ -427,6 +448,8 @@ private:
     Apm apm1_, apm2_;
     std::array<std::int32_t, kSets * kIn> weights_;
     std::array<std::uint64_t, kM> hash_{};
+    std::array<std::uint64_t, kM> ahead_{};  // the hashes prefetch_after() made
+    int ahead_sym_ = -1;                      // for a next step of this code (-1: none)
     std::array<Row*, kM> row_{};
     std::uint32_t match_[24][kNodes];
     Prob end_[3][2][2];
