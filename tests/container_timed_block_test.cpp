@@ -233,7 +233,7 @@ std::string small_timed_frame() {
 TEST(TimedBlock, UnknownSubtypeCodingOrFrameIsCorruptAtItsByte) {
     const std::string frame = small_timed_frame();
     ASSERT_TRUE(decompress(frame).ok());
-    auto sub = decompress(with_payload_byte(frame, 0, 1));
+    auto sub = decompress(with_payload_byte(frame, 0, 9));  // 0, 1, 2 and 4 name blocks
     ASSERT_FALSE(sub.ok());
     EXPECT_EQ(sub.error().code, Errc::corrupt);
     EXPECT_NE(sub.error().message.find("payload byte 0: unknown subtype"), std::string::npos) << sub.error().message;

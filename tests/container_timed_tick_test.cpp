@@ -50,10 +50,10 @@ Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
     return c;
 }
 
-Block round_trip(const Block& in, bool mixed = false) {
-    const std::string payload = stz::write_tick_block(in, mixed);
+Block round_trip(const Block& in, bool mixed = false, bool irq = false) {
+    const std::string payload = irq ? stz::write_interrupt_block(in, mixed) : stz::write_tick_block(in, mixed);
     EXPECT_FALSE(payload.empty());
-    EXPECT_EQ(static_cast<unsigned char>(payload[0]), stz::kTickSubtype);
+    EXPECT_EQ(static_cast<unsigned char>(payload[0]), irq ? stz::kInterruptSubtype : stz::kTickSubtype);
     EXPECT_EQ(static_cast<unsigned char>(payload[1]), mixed ? 1u : 0u);  // the coding
     Block out;
     stz::BlockCounts counts;
@@ -84,12 +84,14 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
                 b.chains.push_back(timed_chain(rng, axes, 1500, far));
             }
             if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
-            for (const bool mixed : {false, true}) {
-                const Block out = round_trip(b, mixed);
-                EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " mixed " << mixed;
-                EXPECT_EQ(out.layout, b.layout);
-                EXPECT_EQ(out.axes, axes);
-            }
+            for (const bool irq : {false, true})
+                for (const bool mixed : {false, true}) {
+                    const Block out = round_trip(b, mixed, irq);
+                    EXPECT_EQ(out.chains, b.chains)
+                        << "axes " << axes << " variant " << variant << " mixed " << mixed << " irq " << irq;
+                    EXPECT_EQ(out.layout, b.layout);
+                    EXPECT_EQ(out.axes, axes);
+                }
         }
 }
 
@@ -195,9 +197,10 @@ std::string controller_log(std::uint32_t seed) {
     return log.substr(first);
 }
 
-// Tick blocks of a one-frame version-2 file: its block records walked
-// with the library's varint reader.
-std::size_t tick_blocks(const std::string& frame) {
+// Tick blocks (and interrupt blocks, or only the subtype `only` when
+// given) of a one-frame version-2 file: its block records walked with the
+// library's varint reader.
+std::size_t tick_blocks(const std::string& frame, int only = -1) {
     wire::Cursor cur(std::string_view(frame).substr(8));  // after the frame header
     std::size_t n = 0;
     unsigned first = 0;
@@ -207,7 +210,10 @@ std::size_t tick_blocks(const std::string& frame) {
         if ((type == stz::kChains || type == stz::kRaw) && !cur.varint(dsize)) break;
         std::string_view payload;
         if (!cur.bytes(static_cast<std::size_t>(csize) + 4, payload)) break;  // payload and block checksum
-        if (type == stz::kExtended && static_cast<unsigned char>(payload[0]) == stz::kTickSubtype) ++n;
+        const unsigned sub = static_cast<unsigned char>(payload[0]);
+        if (type == stz::kExtended && (only < 0 ? sub == stz::kTickSubtype || sub == stz::kInterruptSubtype
+                                                : sub == static_cast<unsigned>(only)))
+            ++n;
     }
     return n;
 }
@@ -279,12 +285,15 @@ TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
     const std::string payload = stz::write_tick_block(b);
     Block out;
     stz::BlockCounts counts;
-    std::string bad = payload;
-    bad[1] = 2;
-    auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
-    ASSERT_FALSE(coding.ok());
-    EXPECT_EQ(coding.error().code, Errc::corrupt);
-    EXPECT_EQ(coding.error().message, "P byte 1: unknown coding of a tick block");
+    for (const bool irq : {false, true}) {  // the interrupt block's header reads the same
+        std::string bad = irq ? stz::write_interrupt_block(b) : payload;
+        bad[1] = 2;
+        auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
+        ASSERT_FALSE(coding.ok());
+        EXPECT_EQ(coding.error().code, Errc::corrupt);
+        EXPECT_EQ(coding.error().message,
+                  irq ? "P byte 1: unknown coding of an interrupt block" : "P byte 1: unknown coding of a tick block");
+    }
     auto longer = stz::read_tick_block(payload + std::string(3, '\0'), 3, true, out, counts, "P");
     ASSERT_FALSE(longer.ok());
     EXPECT_EQ(longer.error().code, Errc::corrupt);
@@ -346,6 +355,94 @@ TEST(TickBlock, RandomPayloadsAreDecodedOrRejectedWithTheirByte) {
         }
     }
     EXPECT_GT(rejected, 500);
+}
+
+// A log of a stepper interrupt with step smoothing: the interrupt runs
+// 2^level times per step of the leading axis at a period in CPU cycles (640
+// to a tick) that ramps per segment; the other axes step by Bresenham on
+// the interrupts, so between the leader's steps as often as on them.
+std::string interrupt_log(std::uint32_t seed, int level) {
+    std::mt19937 rng(seed);
+    std::string log;
+    std::int64_t cycle = 0;
+    for (int move = 0; move < 30; ++move) {
+        const std::int64_t major = 200 + static_cast<std::int64_t>(rng() % 600);
+        const std::int64_t minor = static_cast<std::int64_t>(rng() % static_cast<std::uint32_t>(major / 2));
+        const std::int64_t thr = major << 3, inc_major = major << (3 - level), inc_minor = minor << (3 - level);
+        std::int64_t cm = thr / 2, cn = thr / 2, done = 0;
+        std::int64_t period = 9000 >> level;  // cycles between interrupts
+        while (done < major) {
+            period = std::max<std::int64_t>(period - 40, 500);
+            for (int i = 0; i < 40 << level && done < major; ++i) {  // one segment
+                cycle += period;
+                unsigned tick = 0;
+                cm += inc_major;
+                if (cm > thr) {
+                    cm -= thr;
+                    tick |= 1u;
+                    ++done;
+                }
+                cn += inc_minor;
+                if (cn > thr) {
+                    cn -= thr;
+                    tick |= 4u;
+                }
+                const auto t = static_cast<std::size_t>(cycle / 640);
+                if (log.size() <= t) log.resize(t + 1, '\0');
+                log[t] = static_cast<char>(static_cast<unsigned char>(log[t]) | tick);
+            }
+        }
+    }
+    return log.substr(log.find_first_not_of('\0'));
+}
+
+Block log_block(const std::string& log) {
+    Block b;
+    b.axes = 3;
+    Chain c{3, Point{}, {}};
+    for (const char ch : log) {
+        const auto v = static_cast<unsigned char>(ch);
+        int d[kMaxAxes] = {1, (v & 1u) ? 1 : 0, (v & 4u) ? 1 : 0};
+        c.steps.push_back(make_step(d, 3));
+    }
+    b.chains.push_back(std::move(c));
+    return b;
+}
+
+// The interrupt block (subtype 1) follows the other axis per leader step,
+// where a smoothed interrupt places it between the leader's steps: smaller
+// than the tick block, which follows it only on the leader's ticks (by 2-4 %
+// here); at level 0 (no smoothing) the two stay close.
+TEST(InterruptBlock, SmallerThanTheTickBlockUnderStepSmoothing) {
+    for (int level : {1, 2, 3}) {
+        const Block b = log_block(interrupt_log(21, level));
+        for (const bool mixed : {false, true}) {
+            EXPECT_EQ(round_trip(b, mixed, true).chains, b.chains) << "level " << level;
+            const std::size_t irq = stz::write_interrupt_block(b, mixed).size();
+            const std::size_t tick = stz::write_tick_block(b, mixed).size();
+            EXPECT_LT(irq, tick) << "level " << level << " mixed " << mixed << ": " << irq << " vs " << tick;
+        }
+    }
+    const Block b0 = log_block(interrupt_log(21, 0));
+    const std::size_t irq = stz::write_interrupt_block(b0).size(), tick = stz::write_tick_block(b0).size();
+    EXPECT_LT(irq * 100, tick * 110) << irq << " vs " << tick;
+}
+
+// The encoder keeps the interrupt block where it is the smallest, and the
+// frame decodes to the log.
+TEST(InterruptBlock, EncoderPicksItOnASmoothedLogAndTheFrameRoundTrips) {
+    const std::string log = interrupt_log(22, 2);
+    for (int level : {3, 19}) {
+        CompressOptions opt;
+        opt.format = InputFormat::timed;
+        opt.level = level;
+        auto z = compress(log, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        EXPECT_GE(tick_blocks(*z, stz::kInterruptSubtype), 1u) << "level " << level;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, log) << "level " << level;
+    }
 }
 
 }  // namespace

@@ -100,6 +100,8 @@ python3 "$here/timed_stream.py" --shapes 1 --seed 25 --tick-us 50 --amass-levels
     --accel 300 300 > "$out/timed/heldout-noamass.steps"
 python3 "$here/timed_stream.py" --axes 3 --shapes 1 --seed 26 --tick-us 50 --pipeline --segment-ms 5 \
     > "$out/timed/heldout-pipeline-3axis.steps"
+python3 "$here/timed_stream.py" --axes 3 --shapes 1 --seed 31 --steps-mm 100 100 400 --rate 5000 5000 1500 \
+    --accel 800 800 200 --tick-us 25 --segment-ms 6 --cpu-mhz 12 > "$out/timed/heldout-fast-3axis.steps"
 
 # The worst case: random walks.
 python3 "$here/random_walk.py" 8 100000 1 > "$out/random/walk-8.fc"

@@ -727,16 +727,19 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             if (consider(kSegmentModel, std::move(rec))) job.cut = cuts[which];
             if (s.timed) timed_choice(job, s, cuts, type, best);
         }
-        // Timed frames at every level: the tick block (type 7 subtype 2),
-        // kept when smaller than the segment-based blocks; from the strong
-        // level also with mixed predictions (coding 1).
+        // Timed frames at every level: the tick block (type 7 subtype 2)
+        // and the interrupt block (subtype 1), kept when smaller than the
+        // segment-based blocks; from the strong level also with mixed
+        // predictions (coding 1).
         if (s.timed) {
             for (const bool mixed : {false, true}) {
                 if (mixed && s.level < kStrongLevel) break;
-                const std::string tick = write_tick_block(block, mixed);
-                if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
-                    consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
-                    job.cut.clear();
+                for (const bool irq : {false, true}) {
+                    const std::string tick = irq ? write_interrupt_block(block, mixed) : write_tick_block(block, mixed);
+                    if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
+                        consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
+                        job.cut.clear();
+                }
             }
         }
     } else if (s.profile_named && block.axes == s.axes) {

@@ -326,12 +326,16 @@ private:
 template <class Io>
 class TickCoder {
 public:
-    TickCoder(Io& io, TickTables& t, int axes) : io_(io), t_(t), minor_(axes - 1) {}
+    /// `windows`: an interrupt block (subtype 1), whose B[a] follow the
+    /// axes per leader step (FORMAT.md 1.14).
+    TickCoder(Io& io, TickTables& t, int axes, bool windows = false)
+        : io_(io), t_(t), minor_(axes - 1), windows_(windows) {}
 
     /// A chain's start: every follower forgets.
     void start_chain() {
         for (auto& f : axis_) f.reset();
         for (auto& f : bres_) f.reset();
+        moved_.fill(0);
         sign_.fill(1);
         since_.fill(0);
         gap_.fill(0);
@@ -361,6 +365,7 @@ public:
         if (order[0] != leader_) {
             leader_ = order[0];
             for (auto& f : bres_) f.reset();
+            moved_.fill(0);
         }
         unsigned m = 0, n = 0;
         int lead_step = 0;
@@ -369,7 +374,11 @@ public:
             const auto ua = static_cast<std::size_t>(a);
             Follower& f = axis_[ua];
             const int fa = f.admits();
-            const int ba = i > 0 && lead_step ? bres_[ua].admits() : 0;
+            // Tick block: B[a] reads the axis on the ticks where the leader
+            // steps. Interrupt block: B[a] reads per leader step whether the
+            // axis stepped since the leader's previous step (its window).
+            const int wa = windows_ && i > 0 ? bres_[ua].admits() : 0;
+            const int ba = !windows_ ? (i > 0 && lead_step ? bres_[ua].admits() : 0) : window_context(i, wa, lead_step, ua);
             const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
@@ -386,7 +395,16 @@ public:
             }
             const int step = io_.bit(t_.axis(ua).step[ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
-            if (ba != 0) bres_[ua].push(step, ba);
+            if (windows_) {
+                if (i > 0 && lead_step) {
+                    bres_[ua].push(moved_[ua] | step, wa);
+                    moved_[ua] = 0;
+                } else if (i > 0 && step) {
+                    moved_[ua] = 1;
+                }
+            } else if (ba != 0) {
+                bres_[ua].push(step, ba);
+            }
             if (i == 0) lead_step = step;
             if (step) {
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
@@ -421,6 +439,16 @@ public:
     }
 
 private:
+    // Interrupt blocks, the `b` term of axis a of rank i (0 for the
+    // leader): 1 when the axis has stepped in the current window or its
+    // window follower admits no step, 2 when it admits only a step and the
+    // window closes now (the leader steps), 3 otherwise.
+    int window_context(int i, int wa, int lead_step, std::size_t ua) const {
+        if (i == 0) return 0;
+        if (moved_[ua] || wa == 1) return 1;
+        return wa == 2 && lead_step ? 2 : 3;
+    }
+
     static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
     // Mixed coding, the intervals of an axis `g` (latest first, 0: none):
     // a step now (after `next` ticks) against the next interval
@@ -454,6 +482,8 @@ private:
     Io& io_;
     TickTables& t_;
     int minor_;
+    bool windows_;
+    std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
     int leader_ = -1;
@@ -470,9 +500,9 @@ namespace {
 
 // The chains of `block` (every step advancing time) coded through `io`.
 template <class Io>
-void write_ticks(Io& io, TickTables& t, const Block& block) {
+void write_ticks(Io& io, TickTables& t, const Block& block, bool windows) {
     const int axes = block.axes;
-    TickCoder<Io> coder(io, t, axes);
+    TickCoder<Io> coder(io, t, axes, windows);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -495,9 +525,7 @@ void write_ticks(Io& io, TickTables& t, const Block& block) {
     }
 }
 
-}  // namespace
-
-std::string write_tick_block(const Block& block, bool mixed) {
+std::string write_ticks_payload(const Block& block, bool mixed, unsigned subtype) {
     const int axes = block.axes;
     if (axes < 2 || axes > kMaxAxes) return {};
     std::uint64_t nsteps = 0;
@@ -507,7 +535,7 @@ std::string write_tick_block(const Block& block, bool mixed) {
         nsteps += chain.steps.size();
     }
     std::string out;
-    put_u8(out, kTickSubtype);
+    put_u8(out, subtype);
     put_u8(out, mixed ? kTickMixed : kTickPlain);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
@@ -517,14 +545,22 @@ std::string write_tick_block(const Block& block, bool mixed) {
         MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
-        write_ticks(io, *tables, block);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype);
         out += io.rc.finish();
     } else {
         EncIo io;
-        write_ticks(io, *tables, block);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype);
         out += io.rc.finish();
     }
     return out;
+}
+
+}  // namespace
+
+std::string write_tick_block(const Block& block, bool mixed) { return write_ticks_payload(block, mixed, kTickSubtype); }
+
+std::string write_interrupt_block(const Block& block, bool mixed) {
+    return write_ticks_payload(block, mixed, kInterruptSubtype);
 }
 
 namespace {
@@ -534,10 +570,12 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
                         const std::string& where) {
     Cursor cur(payload);
     unsigned subtype, coding;
-    if (!cur.u8(subtype) || subtype != kTickSubtype)
+    if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
+    const bool windows = subtype == kInterruptSubtype;
     if (!cur.u8(coding) || coding != (kMixedIo<Io> ? kTickMixed : kTickPlain))
-        return make_error(Errc::corrupt, where + " byte 1: unknown coding of a tick block");
+        return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
+                                             (windows ? "an interrupt block" : "a tick block"));
     std::uint64_t nchains, nsteps;
     if (!cur.varint(nchains) || !cur.varint(nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
@@ -554,7 +592,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes);
+    TickCoder<Io> coder(io, t, axes, windows);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);

@@ -15,6 +15,11 @@ namespace stepzip::stz {
 
 /// Subtype 2 of block type 7: the tick block.
 inline constexpr unsigned kTickSubtype = 2;
+/// Subtype 1 of block type 7: the interrupt block, a tick block whose
+/// followers B[a] read per step of the leader whether the axis stepped since
+/// the leader's previous step (a controller's Bresenham line over its
+/// stepper interrupts, whatever its step smoothing level).
+inline constexpr unsigned kInterruptSubtype = 1;
 /// The encoder's name for a block written as a tick block (its record is of
 /// block type 7): not a block type of the format.
 inline constexpr unsigned kTickBlock = 8;
@@ -25,7 +30,11 @@ inline constexpr unsigned kTickBlock = 8;
 /// `mixed`: coded with mixed predictions (coding 1; the strong levels).
 std::string write_tick_block(const Block& block, bool mixed = false);
 
-/// Parses a tick-block payload into `out` (when `expand`) and adds its
+/// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md
+/// 1.14); empty when it cannot be one (as write_tick_block).
+std::string write_interrupt_block(const Block& block, bool mixed = false);
+
+/// Parses a tick-block or interrupt-block payload into `out` (when `expand`) and adds its
 /// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit
 /// naming the payload byte after `where`.
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,

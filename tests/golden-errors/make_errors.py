@@ -299,8 +299,25 @@ tick, k_payload = first_extended_block('tick.steps.stz', 2, 0)
 files.update({
     # A coding that is neither 0 (plain) nor 1 (mixed predictions).
     'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 2))),
-    # Subtype 1 names no block (0 timed, 2 tick).
-    'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 1))),
+    # Subtype 9 names no block (0 timed, 1 interrupt, 2 tick, 4 table).
+    'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 9))),
+})
+# Block type 7 subtype 1, the interrupt block (docs/FORMAT.md 1.14), from
+# tests/golden/v2/interrupt.steps.stz: its first block is an interrupt block.
+irq, i_payload = first_extended_block('interrupt.steps.stz', 1, 0)
+i_csize, _ = varint_at(irq, 9)
+i_end = i_payload + i_csize
+i_short = irq[:9] + put_varint(i_csize - 1) + irq[i_payload:i_end - 1]
+i_short += struct.pack('<I', check32(i_short[8:])) + irq[i_end + 4:]
+files.update({
+    # A coding that is neither 0 (plain) nor 1 (mixed predictions).
+    'v2_interrupt_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(irq, i_payload + 1, 7))),
+    # Read as a tick block (subtype 2), its followers B[a] read other letters:
+    # the decoded ticks differ and the stream runs out before the last one.
+    'v2_interrupt_as_tick': ('corrupt', 'byte 8 (block 0) payload byte %d' % i_csize, reseal2(edit(irq, i_payload, 2))),
+    # The range-coded stream lost its last byte (size and checksum redone):
+    # the decoder notices at the payload's end.
+    'v2_interrupt_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (i_csize - 1), i_short),
 })
 
 
