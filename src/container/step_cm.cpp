@@ -430,7 +430,7 @@ private:
     [[gnu::always_inline]] void prefetch_after(int sym) {
         const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
         StepWalk w = w_;
-        w.step(sym, static_cast<unsigned>(turn));
+        if constexpr (!Light) w.step(sym, static_cast<unsigned>(turn));  // (as in note_turn())
         context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_, &ahead_});
         ahead_sym_ = sym;
     }
