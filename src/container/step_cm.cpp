@@ -346,6 +346,12 @@ private:
     // hash of model k) for each model k used, i its index among them. Model
     // kPredModel alone reads pred and mlen.
     static constexpr int kPredModel = 9;
+    // Model kPredModel's value: the predicted symbol, the match length's
+    // bucket and the last two turns of `lo`.
+    static std::uint64_t pred_context(int pred, std::uint64_t mlen, std::uint64_t lo) {
+        return ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(mlen)),
+                        lo & 63);
+    }
     static constexpr int slot_of(int k) {
         if constexpr (!Light) return k;
         for (std::size_t i = 0; i < kLightSet.size(); ++i)
@@ -381,10 +387,7 @@ private:
         set(integral_constant<int, 8>{}, [&] { return ctx_join(w.where(), p << 3 | order(1)); });
         // The match's predicted symbol, its length and the last turns.
         if constexpr (!std::is_same_v<std::decay_t<Emit>, SkipPred>)
-            set(integral_constant<int, kPredModel>{}, [&] {
-                return ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(mlen)),
-                                order(2));
-            });
+            set(integral_constant<int, kPredModel>{}, [&] { return pred_context(pred, mlen, lo); });
         // The position relative to the chain's start, finer (clamped to 64).
         set(integral_constant<int, 10>{}, [&] {
             const std::int64_t cx = std::clamp<std::int64_t>(w.dx, -64, 64), cy = std::clamp<std::int64_t>(w.dy, -64, 64);
@@ -399,9 +402,7 @@ private:
         if (ahead_sym_ >= 0) {
             hash_ = ahead_;
             if constexpr (slot_of(kPredModel) >= 0) {
-                const std::uint64_t h = hash_ctx(
-                    kPredModel, ctx_join(static_cast<std::uint64_t>(pred + 1) << 5 | static_cast<std::uint64_t>(step_len_bucket(m_.len)),
-                                         turns_ & 63));
+                const std::uint64_t h = hash_ctx(kPredModel, pred_context(pred, m_.len, turns_));
                 hash_[static_cast<std::size_t>(slot_of(kPredModel))] = h;
                 rows_.prefetch(h);
             }
