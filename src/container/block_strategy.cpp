@@ -409,6 +409,41 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
 
+// A large two-axis block at the fast levels that the light step model codes
+// far below the other encodings is known for one before the whole block is
+// cut: its whole chains spread over it (about kCmSampleSteps steps, cut as
+// the block would be) coded by the light model must come out at least
+// 1/kLightFirstMargin smaller than the table block, the segment model and
+// the step model of the same sample. Such a block skips the cut, the other
+// encodings and the whole-block trials of light_cm_may_win() (most of the
+// first pass on large contours); the others take the full choice. The
+// margin leaves out blocks where the whole block's table block, whose
+// matches the sample cannot see, may still win (repeated glyphs of plots).
+constexpr std::size_t kLightFirstMargin = 6;
+
+bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s) {
+    if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || block.axes != s.axes ||
+        steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
+        return false;
+    Block sample;
+    sample.axes = block.axes;
+    spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    Cut cut;
+    SegmentStats stats;
+    const bool aligned = s.aligned_cut && s.segmenter != SegmenterKind::patent &&
+                         aligned_block_cut(sample, s.profile, cut, nullptr);
+    if (!aligned && !segment_block(sample, s.profile, SegmenterKind::greedy, cut, stats, 0, s.source, nullptr))
+        return false;
+    const std::size_t light = write_light_cm_step_model(sample).size();
+    if (light == 0) return false;
+    std::size_t other = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
+    if (s.level >= kFastStepLevel) {
+        other = std::min(other, write_segment_model(sample, s.profile, cut).size());
+        other = std::min(other, write_step_model(sample, kFastStepOrder).size());
+    }
+    return light * kLightFirstMargin <= other * (kLightFirstMargin - 1);
+}
+
 }  // namespace
 
 // What a profile trial made: the segmenter's cut, its statistics and, but
@@ -632,10 +667,12 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
                           s.cm_first_steps == job.steps;
     std::size_t sample_cm = 0;  // the model's size on the block's sample, when made
-    if (known_cm || cm_step_model_first(block, job.steps, s, &sample_cm)) {
-        // A step-model block, coded by the context-mixing model in the
-        // second pass (cm_pass(); no record until then).
+    const bool cm_first = known_cm || cm_step_model_first(block, job.steps, s, &sample_cm);
+    if (cm_first || light_cm_first(block, job.steps, s)) {
+        // A step-model block, coded by the context-mixing model (or the
+        // light one) in the second pass (cm_pass(); no record until then).
         job.cm = true;
+        job.cm_light = !cm_first;
         job.type = kStepModel;
         job.order = 1;
         if (s.window_log != 0) {
