@@ -84,6 +84,7 @@ struct BlockJob {
     int order = 0;                          ///< step-model block: the context order
     bool cm = false;  ///< the strong levels: coded by the context-mixing step model in the second pass
     bool cm_light = false;  ///< with cm: the light model (the fast levels)
+    std::string light_model;  ///< the light model's payload of the whole block without the window, when made
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
 
