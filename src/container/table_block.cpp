@@ -14,6 +14,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <type_traits>
 
 #include "../common/bytes.hpp"
 #include "arc_items.hpp"
@@ -225,6 +226,15 @@ Segment canonical(Profile p, const Segment& s, int axes) {
     if (is_arc(s, axes)) return s;
     Segment c{};
     c.delta = s.delta;
+    if (axes == 2) {
+        // One phase, its arguments as phase_arguments gives them: (L, S) on
+        // the leading-axis profiles, (|dx|, |dy|) on the others.
+        const std::int64_t x = std::llabs(s.delta[0]), y = std::llabs(s.delta[1]);
+        const bool eight = profile_eight_connected(p);
+        const PhaseRange r = phase_range(p, eight ? std::max(x, y) : x, eight ? std::min(x, y) : y);
+        c.phase[0] = r.hi - r.lo == 1 ? r.lo : s.phase[0];
+        return c;
+    }
     for (int j = 0; j < phase_count(p, axes); ++j) {
         const auto ab = *phase_arguments(p, s, axes, j);
         const PhaseRange r = phase_range(p, ab.first, ab.second);
@@ -285,7 +295,7 @@ public:
     // `more_segs`, `more_items`, `more_starts`: room for the block's own,
     // reserved with the window's (the decoder's estimate; no copy of the
     // primed history).
-    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0,
+    void prime(const WindowView& window, const Segment* const* canon, std::size_t more_segs = 0, std::size_t more_items = 0,
                std::size_t more_starts = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
@@ -309,7 +319,7 @@ public:
                 starts_[ci] = w.starts[k];
                 *hp++ = kStartTag | ci++;
                 for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
-                    sp[si] = canon ? canon++ : seg;
+                    sp[si] = canon ? canon[si] : seg;
                     *hp++ = kSegTag | si++;
                 }
                 *hp++ = kEndTag;
@@ -595,17 +605,30 @@ public:
     }
 };
 
-std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+[[gnu::always_inline]] inline std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
     h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
     return h * 0xBF58476D1CE4E5B9ull;
 }
 
-std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
-    std::uint64_t h = tag;
-    for (auto v : d) h = mix(h, static_cast<std::uint64_t>(v));
-    if (ph)
-        for (auto v : *ph) h = mix(h, static_cast<std::uint64_t>(v));
+// Match key of an item: the tag, then every total and (a segment's) every
+// phase mixed in, unused ones included (written out: a loop and a call per
+// item were a sixth of -L 1 on repeated input).
+[[gnu::always_inline]] inline std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
+    static_assert(kMaxAxes == 6);
+    auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+    std::uint64_t h = mix(mix(mix(mix(mix(mix(tag, u(d[0])), u(d[1])), u(d[2])), u(d[3])), u(d[4])), u(d[5]));
+    if (ph) {
+        const auto& f = *ph;
+        h = mix(mix(mix(mix(mix(h, u(f[0])), u(f[1])), u(f[2])), u(f[3])), u(f[4]));
+    }
     return h;
+}
+
+// Segment equality as operator== (every total and phase) in one memcmp
+// where operator== makes two calls.
+inline bool same_segment(const Segment& a, const Segment& b) {
+    static_assert(std::has_unique_object_representations_v<Segment>);
+    return std::memcmp(&a, &b, sizeof(Segment)) == 0;
 }
 
 // Normalized frequencies of `count` for precision `prec` (every used symbol
@@ -753,20 +776,6 @@ struct BlockHead {
     std::uint64_t nchains = 0, nsegments = 0, nsteps = 0, grid = 1;
 };
 
-// Gcd of every chain start delta (1 when none or too large).
-std::uint64_t start_grid(const Block& block, const std::vector<std::vector<Segment>>& segs) {
-    std::uint64_t grid = 0;
-    Point ref{};
-    for (std::size_t i = 0; i < block.chains.size(); ++i) {
-        const Chain& chain = block.chains[i];
-        for (int a = 0; a < block.axes; ++a) grid = std::gcd(grid, magnitude(wrap_sub(chain.start[a], ref[a])));
-        ref = chain.start;
-        for (const Segment& s : segs[i])
-            for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
-    }
-    return grid == 0 || grid > (std::uint64_t{1} << 62) ? 1 : grid;
-}
-
 }  // namespace
 
 const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, TableItemKeys* made) {
@@ -801,7 +810,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     h.nchains = block.chains.size();
     // The items with their keys.
     std::vector<std::uint32_t> items;  // as history entries: index into cs / deltas
-    std::vector<Segment> cs;
+    std::vector<const Segment*> cs;    // canonical segments: the window's (kept with it), then the block's
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
     // The window's items first (matches may reach them), then the block's.
@@ -810,11 +819,12 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         for (const auto& b : *window) nw += b->items.segments.size() + 2 * b->items.starts.size();
         items.reserve(nw);
         keys.reserve(nw);
+        cs.reserve(nw);
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
             const TableItemKeys& t = window_keys(*b, p, axes);
             auto si = static_cast<std::uint32_t>(cs.size()), di = static_cast<std::uint32_t>(deltas.size());
-            cs.insert(cs.end(), t.canon.begin(), t.canon.end());
+            for (const Segment& c : t.canon) cs.push_back(&c);
             deltas.insert(deltas.end(), w.starts.begin(), w.starts.end());
             keys.insert(keys.end(), t.keys.begin(), t.keys.end());
             for (std::size_t c = 0; c < w.starts.size(); ++c) {
@@ -832,46 +842,61 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     std::size_t own_segs = 0;
     for (const auto& v : segs) own_segs += v.size();
     if (own && own->canon.size() == own_segs && own->keys.size() == own_segs + 2 * block.chains.size()) mine = own;
-    const std::size_t first_seg = cs.size();
+    std::vector<Segment> fresh;  // the block's canonical segments when not from `own`
     {
+        const std::size_t own_items = own_segs + 2 * block.chains.size();
+        items.reserve(items.size() + own_items);
+        keys.reserve(keys.size() + own_items);
+        deltas.reserve(deltas.size() + block.chains.size());
+        cs.reserve(cs.size() + own_segs);
+        auto si = static_cast<std::uint32_t>(cs.size());  // the block's first segment
+        if (mine) {
+            for (const Segment& c : mine->canon) cs.push_back(&c);
+            keys.insert(keys.end(), mine->keys.begin(), mine->keys.end());
+        } else {
+            fresh.reserve(own_segs);  // never grows past: cs points into it
+        }
+        const bool eight = profile_eight_connected(p);
+        std::uint64_t grid = 0;  // gcd of the start deltas: the grid (1 when none or too large)
         Point ref{};
-        std::size_t kk = 0, kc = 0;  // into mine->keys, mine->canon
         for (std::size_t i = 0; i < block.chains.size(); ++i) {
             const Chain& chain = block.chains[i];
             Point d{};
-            for (int a = 0; a < axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
+            for (int a = 0; a < axes; ++a) {
+                d[a] = wrap_sub(chain.start[a], ref[a]);
+                grid = std::gcd(grid, magnitude(d[a]));
+            }
             deltas.push_back(d);
             items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
-            keys.push_back(mine ? mine->keys[kk++] : key_of(1, d, nullptr));
+            if (!mine) keys.push_back(key_of(1, d, nullptr));
             ref = chain.start;
             for (const Segment& s : segs[i]) {
-                if (mine) {
-                    cs.push_back(mine->canon[kc++]);
-                    keys.push_back(mine->keys[kk++]);
-                } else {
-                    cs.push_back(canonical(p, s, axes));
-                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                if (!mine) {
+                    const Segment& c = fresh.emplace_back(canonical(p, s, axes));
+                    cs.push_back(&c);
+                    keys.push_back(key_of(0, c.delta, &c.phase));
                 }
-                items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
-                ++h.nsegments;
-                h.nsteps += item_steps(s, p, axes);
-                for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+                items.push_back(kSegTag | si++);
+                h.nsteps += is_arc(s, axes) ? item_steps(s, p, axes)
+                                            : static_cast<std::uint64_t>(segment_length(s.delta, axes, eight));
+                if (axes == 2) {
+                    ref[0] = wrap_add(ref[0], s.delta[0]);
+                    ref[1] = wrap_add(ref[1], s.delta[1]);
+                } else {
+                    for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+                }
             }
             items.push_back(kEndTag);
-            keys.push_back(2);
-            kk += mine ? 1 : 0;
+            if (!mine) keys.push_back(2);
         }
+        h.nsegments = own_segs;
+        h.grid = grid == 0 || grid > (std::uint64_t{1} << 62) ? 1 : grid;
     }
-    if (made && !mine) {
-        made->canon.assign(cs.begin() + static_cast<std::ptrdiff_t>(first_seg), cs.end());
-        made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
-    }
-    h.grid = start_grid(block, segs);
     auto same = [&](std::size_t a, std::size_t b) {
         if (keys[a] != keys[b]) return false;
         const std::uint32_t x = items[a], y = items[b];
         if ((x & ~kIndexMask) != (y & ~kIndexMask)) return false;
-        if ((x & ~kIndexMask) == kSegTag) return cs[x & kIndexMask] == cs[y & kIndexMask];
+        if ((x & ~kIndexMask) == kSegTag) return same_segment(*cs[x & kIndexMask], *cs[y & kIndexMask]);
         if ((x & ~kIndexMask) == kStartTag) return deltas[x & kIndexMask] == deltas[y & kIndexMask];
         return true;
     };
@@ -894,11 +919,17 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     TableCoder<EncSide>& coder = pass->coder;
     coder.raw_minors_ = raw_minors;
     coder.grid_ = static_cast<std::int64_t>(h.grid);
-    if (window) coder.prime(*window, cs.data());  // the window's segments come first in cs
+    if (window) {
+        coder.prime(*window, cs.data(), own_segs, n - first);  // the window's segments come first in cs
+    } else {
+        coder.segs_.reserve(own_segs);
+        coder.hist_.reserve(n);
+    }
+    io.syms.reserve(n - first);
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
-        return shape_key[id] == keys[item] && *coder.segs_[coder.shape_[id]] == cs[items[item] & kIndexMask];
+        return shape_key[id] == keys[item] && same_segment(*coder.segs_[coder.shape_[id]], *cs[items[item] & kIndexMask]);
     };
 
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
@@ -962,8 +993,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         } else if (kind == kEndTag) {
             coder.code_op(kOpEnd);
             coder.code_end();
-        } else if (is_arc(cs[e & kIndexMask], axes)) {
-            const Segment& want = cs[e & kIndexMask];
+        } else if (is_arc(*cs[e & kIndexMask], axes)) {
+            const Segment& want = *cs[e & kIndexMask];
             if (coder.arc_method_ < 0) coder.arc_method_ = static_cast<int>(want.delta[5]);
             const unsigned op = arc_ccw(want) ? kOpArc + 1 : kOpArc;
             coder.code_op(op);
@@ -986,7 +1017,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                     io.raw(nb, extra);
                     coder.take_shape(coder.recent_.at(q), true, q);
                 } else {
-                    const Segment& want = cs[e & kIndexMask];
+                    const Segment& want = *cs[e & kIndexMask];
                     unsigned op = kOpFull;
                     if (axes == 2) {
                         const int lead = leading_axis(want.delta, 2);
@@ -1062,6 +1093,11 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     put_varint(out, stream.size());
     out += stream;
     out += extra_bits;
+    if (made && !mine) {
+        made->canon = std::move(fresh);
+        if (first == 0) made->keys = std::move(keys);
+        else made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
+    }
     return out;
 }
 
