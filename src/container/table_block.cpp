@@ -220,27 +220,30 @@ private:
     std::size_t cap_ = 0, first_;
 };
 
-// Canonical form of a segment: degenerate phases at their only value,
-// unused phases zero (as the decoder rebuilds it).
-Segment canonical(Profile p, const Segment& s, int axes) {
-    if (is_arc(s, axes)) return s;
-    Segment c{};
+// Canonical form of a segment into `c` (zero on entry): degenerate phases
+// at their only value, unused phases zero (as the decoder rebuilds it).
+inline void canonical_into(Profile p, const Segment& s, int axes, Segment& c) {
+    if (is_arc(s, axes)) {
+        c = s;
+        return;
+    }
     c.delta = s.delta;
     if (axes == 2) {
         // One phase, its arguments as phase_arguments gives them: (L, S) on
-        // the leading-axis profiles, (|dx|, |dy|) on the others.
+        // the leading-axis profiles, (|dx|, |dy|) on the others; degenerate
+        // as phase_range says (its range is then [default, default + 1)).
         const std::int64_t x = std::llabs(s.delta[0]), y = std::llabs(s.delta[1]);
         const bool eight = profile_eight_connected(p);
-        const PhaseRange r = phase_range(p, eight ? std::max(x, y) : x, eight ? std::min(x, y) : y);
-        c.phase[0] = r.hi - r.lo == 1 ? r.lo : s.phase[0];
-        return c;
+        const std::int64_t a = eight ? std::max(x, y) : x, b = eight ? std::min(x, y) : y;
+        const bool degenerate = eight ? (b == 0 || b == a) : (a == 0 || b == 0);
+        c.phase[0] = degenerate ? default_phase(p, a, b) : s.phase[0];
+        return;
     }
     for (int j = 0; j < phase_count(p, axes); ++j) {
         const auto ab = *phase_arguments(p, s, axes, j);
         const PhaseRange r = phase_range(p, ab.first, ab.second);
         c.phase[static_cast<std::size_t>(j)] = r.hi - r.lo == 1 ? r.lo : s.phase[static_cast<std::size_t>(j)];
     }
-    return c;
 }
 
 // kAxes: the axis count fixed at compile time (the decoder's loop for two
@@ -793,7 +796,7 @@ const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, Tabl
         for (std::size_t c = 0; c < w.starts.size(); ++c) {
             t.keys.push_back(key_of(1, w.starts[c], nullptr));
             for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                t.canon.push_back(canonical(p, w.segments[k], axes));
+                canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
                 t.keys.push_back(key_of(0, t.canon.back().delta, &t.canon.back().phase));
             }
             t.keys.push_back(2);
@@ -813,13 +816,24 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     std::vector<const Segment*> cs;    // canonical segments: the window's (kept with it), then the block's
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
+    std::size_t own_segs = 0;
+    for (const auto& v : segs) own_segs += v.size();
+    const std::size_t own_items = own_segs + 2 * block.chains.size();
     // The window's items first (matches may reach them), then the block's.
+    {
+        std::size_t nw = 0, ns = 0, nc = 0;
+        if (window)
+            for (const auto& b : *window) {
+                nw += b->items.segments.size() + 2 * b->items.starts.size();
+                ns += b->items.segments.size();
+                nc += b->items.starts.size();
+            }
+        items.reserve(nw + own_items);
+        keys.reserve(nw + own_items);
+        cs.reserve(ns + own_segs);
+        deltas.reserve(nc + block.chains.size());
+    }
     if (window) {
-        std::size_t nw = 0;
-        for (const auto& b : *window) nw += b->items.segments.size() + 2 * b->items.starts.size();
-        items.reserve(nw);
-        keys.reserve(nw);
-        cs.reserve(nw);
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
             const TableItemKeys& t = window_keys(*b, p, axes);
@@ -839,16 +853,9 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     // earlier coding of the same items) when it has their count, else
     // computed here.
     const TableItemKeys* mine = nullptr;
-    std::size_t own_segs = 0;
-    for (const auto& v : segs) own_segs += v.size();
     if (own && own->canon.size() == own_segs && own->keys.size() == own_segs + 2 * block.chains.size()) mine = own;
     std::vector<Segment> fresh;  // the block's canonical segments when not from `own`
     {
-        const std::size_t own_items = own_segs + 2 * block.chains.size();
-        items.reserve(items.size() + own_items);
-        keys.reserve(keys.size() + own_items);
-        deltas.reserve(deltas.size() + block.chains.size());
-        cs.reserve(cs.size() + own_segs);
         auto si = static_cast<std::uint32_t>(cs.size());  // the block's first segment
         if (mine) {
             for (const Segment& c : mine->canon) cs.push_back(&c);
@@ -872,7 +879,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             ref = chain.start;
             for (const Segment& s : segs[i]) {
                 if (!mine) {
-                    const Segment& c = fresh.emplace_back(canonical(p, s, axes));
+                    Segment& c = fresh.emplace_back();
+                    canonical_into(p, s, axes, c);
                     cs.push_back(&c);
                     keys.push_back(key_of(0, c.delta, &c.phase));
                 }
@@ -1087,9 +1095,11 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             put_table(out, count, enc[static_cast<std::size_t>(t)]);
         }
     RansEncoder rans;
+    rans.reserve(io.syms.size());
     for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
     const std::string stream = rans.finish();
     const std::string extra_bits = io.bits.finish();
+    out.reserve(out.size() + 10 + stream.size() + extra_bits.size());
     put_varint(out, stream.size());
     out += stream;
     out += extra_bits;
