@@ -142,7 +142,7 @@ struct DecSide {
     RansDecoder rans;
     BitReader bits;
     bool failed = false;
-    unsigned sym(int t, unsigned) {
+    [[gnu::always_inline]] unsigned sym(int t, unsigned) {
         const DecodeTable& d = (*tables)[static_cast<std::size_t>(t)];
         if (d.slots.empty()) {
             failed = true;  // a table the payload left unused
@@ -204,19 +204,21 @@ class StepBuffer {
 public:
     explicit StepBuffer(std::size_t first) : first_(first) {}
     /// Room for `n` more steps after the first `used`, which are kept.
-    Step* room(std::size_t used, std::size_t n) {
-        if (used + n > cap_) {
-            const std::size_t cap = std::max({used + n, 2 * cap_, first_});
-            auto b = std::make_unique_for_overwrite<Step[]>(cap);
-            if (used > 0) std::memcpy(b.get(), buf_.get(), used * sizeof(Step));
-            buf_ = std::move(b);
-            cap_ = cap;
-        }
+    [[gnu::always_inline]] Step* room(std::size_t used, std::size_t n) {
+        if (used + n > cap_) grow(used, n);
         return buf_.get() + used;
     }
     const Step* data() const { return buf_.get(); }
 
 private:
+    void grow(std::size_t used, std::size_t n) {
+        const std::size_t cap = std::max({used + n, 2 * cap_, first_});
+        auto b = std::make_unique_for_overwrite<Step[]>(cap);
+        if (used > 0) std::memcpy(b.get(), buf_.get(), used * sizeof(Step));
+        buf_ = std::move(b);
+        cap_ = cap;
+    }
+
     std::unique_ptr<Step[]> buf_;
     std::size_t cap_ = 0, first_;
 };
@@ -293,13 +295,11 @@ public:
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
-    // nothing else) so that matches may copy them. `canon`: the window's
-    // segments in canonical form, in the same order (the encoder's cuts may
-    // not be canonical); null: the window's segments as they are.
+    // nothing else) so that matches may copy them.
     // `more_segs`, `more_items`, `more_starts`: room for the block's own,
     // reserved with the window's (the decoder's estimate; no copy of the
     // primed history).
-    void prime(const WindowView& window, const Segment* const* canon, std::size_t more_segs = 0, std::size_t more_items = 0,
+    void prime(const WindowView& window, std::size_t more_segs = 0, std::size_t more_items = 0,
                std::size_t more_starts = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
@@ -323,12 +323,25 @@ public:
                 starts_[ci] = w.starts[k];
                 *hp++ = kStartTag | ci++;
                 for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
-                    sp[si] = canon ? canon[si] : seg;
+                    sp[si] = seg;
                     *hp++ = kSegTag | si++;
                 }
                 *hp++ = kEndTag;
             }
         }
+    }
+
+    // The encoder's prime(): the window's items as the encoder lists them
+    // (the same history entries over the same segment and start indices),
+    // with its segments in canonical form (its cuts may not be canonical).
+    void prime_from(const std::vector<const Segment*>& segs, const std::vector<std::uint32_t>& items,
+                    const std::vector<Point>& starts, std::size_t nsegs, std::size_t nitems, std::size_t nstarts,
+                    std::size_t more_segs, std::size_t more_items) {
+        segs_.reserve(nsegs + more_segs);
+        hist_.reserve(nitems + more_items);
+        segs_.assign(segs.begin(), segs.begin() + static_cast<std::ptrdiff_t>(nsegs));
+        hist_.assign(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(nitems));
+        starts_.assign(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(nstarts));
     }
 
     bool fail(const char* what) {
@@ -883,7 +896,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             }
         }
     }
-    const std::size_t first = items.size();
+    const std::size_t first = items.size(), first_seg = cs.size(), first_start = deltas.size();
     // The block's own keys and canonical segments: from `own` (made by an
     // earlier coding of the same items) when it has their count, else
     // computed here.
@@ -964,7 +977,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     coder.raw_minors_ = raw_minors;
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (window) {
-        coder.prime(*window, cs.data(), own_segs, n - first);  // the window's segments come first in cs
+        coder.prime_from(cs, items, deltas, first_seg, first, first_start, own_segs, n - first);
     } else {
         coder.segs_.reserve(own_segs);
         coder.hist_.reserve(n);
@@ -1208,7 +1221,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
         const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
-            coder.prime(*window, nullptr, segs, hist, starts);
+            coder.prime(*window, segs, hist, starts);
         } else {
             coder.segs_.reserve(segs);
             coder.hist_.reserve(hist);
