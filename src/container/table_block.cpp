@@ -124,7 +124,7 @@ struct EncSide {
     EncSide() {
         for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t, true), 0);
     }
-    unsigned sym(int t, unsigned s) {
+    [[gnu::always_inline]] unsigned sym(int t, unsigned s) {
         syms.emplace_back(static_cast<std::uint8_t>(t), static_cast<std::uint16_t>(s));
         ++count[static_cast<std::size_t>(t)][s];
         return s;
@@ -934,8 +934,13 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                     keys.push_back(axes == 2 ? line_keys(c) : key_of(0, c.delta, &c.phase));
                 }
                 items.push_back(kSegTag | si++);
-                h.nsteps += is_arc(s, axes) ? item_steps(s, p, axes)
-                                            : static_cast<std::uint64_t>(segment_length(s.delta, axes, eight));
+                if (axes == 2 && s.delta[4] == 0) {  // a two-axis line: segment_length() written out
+                    const std::uint64_t x = magnitude(s.delta[0]), y = magnitude(s.delta[1]);
+                    h.nsteps += eight ? std::max(x, y) : x + y;
+                } else {
+                    h.nsteps += is_arc(s, axes) ? item_steps(s, p, axes)
+                                                : static_cast<std::uint64_t>(segment_length(s.delta, axes, eight));
+                }
                 if (axes == 2) {
                     ref[0] = wrap_add(ref[0], s.delta[0]);
                     ref[1] = wrap_add(ref[1], s.delta[1]);
