@@ -628,8 +628,7 @@ public:
 }
 
 // Match key of an item: the tag, then every total and (a segment's) every
-// phase mixed in, unused ones included (written out: a loop and a call per
-// item were a sixth of -L 1 on repeated input).
+// phase mixed in, unused ones included (written out, and inline).
 [[gnu::always_inline]] inline std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
     static_assert(kMaxAxes == 6);
     auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
@@ -1258,7 +1257,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     StepBuffer steps(static_cast<std::size_t>(
         std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16)));
     // Takes a line segment (not an arc) into the output (inline at both
-    // calls: the call was a fifth of its cost).
+    // calls).
     auto take_line = [&](const Segment& seg) __attribute__((always_inline)) -> const char* {
         if (!in_chain) return "segment outside a chain";
         const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
