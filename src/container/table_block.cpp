@@ -1009,10 +1009,11 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     for (std::size_t i = first; i < n;) {
         // A match: a repeat offset first, then the hash candidate.
         std::size_t len = 0, off = 0;
+        std::size_t rep_len[3] = {0, 0, 0};  // (0 for a repeat offset past the start)
         for (int r = 0; r < 3; ++r) {
             const std::uint64_t o = coder.rep_[static_cast<std::size_t>(r)];
             if (o > i) continue;
-            const std::size_t l = match_len(i, i - o);
+            const std::size_t l = rep_len[r] = match_len(i, i - o);
             if (l > len) {
                 len = l;
                 off = o;
@@ -1025,7 +1026,9 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             table[hh] = static_cast<std::uint32_t>(i + 1);
             if (cand != 0) {
                 const std::size_t j = cand - 1;
-                const std::size_t l = match_len(i, j);
+                // At a repeat offset the length is the one just measured.
+                const int r = i - j == coder.rep_[0] ? 0 : i - j == coder.rep_[1] ? 1 : i - j == coder.rep_[2] ? 2 : -1;
+                const std::size_t l = r >= 0 ? rep_len[r] : match_len(i, j);
                 if (l >= min_match && l > len + 2) {
                     len = l;
                     off = i - j;
