@@ -121,6 +121,45 @@ TEST(ContainerTable, MatchesReachIntoTheWindow) {
     }
 }
 
+// The item keys and canonical segments an encoder keeps (a block's first
+// pass, handed to its window contribution) are the ones a later block would
+// make from the window's items, and coding with them gives the same bytes
+// as coding without: on two axes (the keys of line segments kept by their
+// totals and phase) under the 8- and 4-connected profiles, and on four axes.
+TEST(ContainerTable, KeptKeysEqualFreshKeys) {
+    struct Case {
+        const char* file;
+        Profile p;
+    };
+    const std::string steps4 = slurp(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / "stepper" /
+                                     "engrave-4axis.steps");
+    for (const Case& c : {Case{"plotter/hershey-eval8.fc", Profile::eval8}, Case{"glyphs/dejavu-8.fc", Profile::grbl},
+                          Case{"glyphs/dejavu-4.fc", Profile::eval4}, Case{"glyphs/c059-4.fc", Profile::patent},
+                          Case{nullptr, Profile::marlin}}) {
+        SCOPED_TRACE(c.file ? c.file : "stepper/engrave-4axis.steps");
+        const Block b = c.file ? corpus_block(c.file, 40000) : text_block(InputFormat::steps, steps4);
+        const Cut segs = greedy_cut(b, c.p);
+        TableEffort e;
+        e.minors = MinorCoding::smaller;
+        TableItemKeys made;
+        const std::string first = write_table_block(b, c.p, segs, e, nullptr, nullptr, &made);
+        // Kept with the block's contribution, or made there from its items.
+        auto kept = std::make_shared<WindowBlock>(), fresh = std::make_shared<WindowBlock>();
+        kept->items = fresh->items = segment_items(b, segs);
+        TableItemKeys copy = made;
+        const TableItemKeys& k = window_keys(*kept, c.p, b.axes, &copy);
+        const TableItemKeys& f = window_keys(*fresh, c.p, b.axes);
+        EXPECT_EQ(k.keys, f.keys);
+        EXPECT_EQ(k.canon, f.canon);
+        EXPECT_EQ(k.keys, made.keys);
+        EXPECT_EQ(k.canon.size(), fresh->items.segments.size());
+        // The same bytes from the kept keys, alone and from a window.
+        EXPECT_EQ(write_table_block(b, c.p, segs, e, nullptr, &made), first);
+        const WindowView wk{kept}, wf{fresh};
+        EXPECT_EQ(write_table_block(b, c.p, segs, e, &wk, &made), write_table_block(b, c.p, segs, e, &wf));
+    }
+}
+
 // The minor totals coded as they are (block type 7 subtype 4, FORMAT.md
 // 1.10.2) or as residuals of the previous slope (type 5): both decode, and
 // MinorCoding::smaller writes the smaller one, which differs by data.

@@ -29,9 +29,9 @@ bool CutCache::find(std::uint64_t h, std::span<const Step> steps, BlockCut kind,
         return false;
     const auto per = static_cast<std::size_t>(2 * axes - 1);
     out.clear();
-    out.resize(e.cut.size() / per);  // zeros: the axes beyond `axes`
-    const std::int64_t* v = e.cut.data();
-    for (Segment& seg : out) {
+    out.reserve(e.cut.size() / per);
+    for (const std::int64_t* v = e.cut.data(); v != e.cut.data() + e.cut.size();) {
+        Segment& seg = out.emplace_back();  // zeros: the axes beyond `axes`
         for (int a = 0; a < axes; ++a) seg.delta[a] = *v++;
         for (int a = 0; a + 1 < axes; ++a) seg.phase[a] = *v++;
     }

@@ -12,8 +12,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numeric>
+#include <type_traits>
 
 #include "../common/bytes.hpp"
 #include "arc_items.hpp"
@@ -122,7 +124,7 @@ struct EncSide {
     EncSide() {
         for (int t = 0; t < kTables; ++t) count[static_cast<std::size_t>(t)].assign(alphabet(t, true), 0);
     }
-    unsigned sym(int t, unsigned s) {
+    [[gnu::always_inline]] unsigned sym(int t, unsigned s) {
         syms.emplace_back(static_cast<std::uint8_t>(t), static_cast<std::uint16_t>(s));
         ++count[static_cast<std::size_t>(t)][s];
         return s;
@@ -140,7 +142,7 @@ struct DecSide {
     RansDecoder rans;
     BitReader bits;
     bool failed = false;
-    unsigned sym(int t, unsigned) {
+    [[gnu::always_inline]] unsigned sym(int t, unsigned) {
         const DecodeTable& d = (*tables)[static_cast<std::size_t>(t)];
         if (d.slots.empty()) {
             failed = true;  // a table the payload left unused
@@ -202,35 +204,49 @@ class StepBuffer {
 public:
     explicit StepBuffer(std::size_t first) : first_(first) {}
     /// Room for `n` more steps after the first `used`, which are kept.
-    Step* room(std::size_t used, std::size_t n) {
-        if (used + n > cap_) {
-            const std::size_t cap = std::max({used + n, 2 * cap_, first_});
-            auto b = std::make_unique_for_overwrite<Step[]>(cap);
-            if (used > 0) std::memcpy(b.get(), buf_.get(), used * sizeof(Step));
-            buf_ = std::move(b);
-            cap_ = cap;
-        }
+    [[gnu::always_inline]] Step* room(std::size_t used, std::size_t n) {
+        if (used + n > cap_) grow(used, n);
         return buf_.get() + used;
     }
     const Step* data() const { return buf_.get(); }
 
 private:
+    void grow(std::size_t used, std::size_t n) {
+        const std::size_t cap = std::max({used + n, 2 * cap_, first_});
+        auto b = std::make_unique_for_overwrite<Step[]>(cap);
+        if (used > 0) std::memcpy(b.get(), buf_.get(), used * sizeof(Step));
+        buf_ = std::move(b);
+        cap_ = cap;
+    }
+
     std::unique_ptr<Step[]> buf_;
     std::size_t cap_ = 0, first_;
 };
 
-// Canonical form of a segment: degenerate phases at their only value,
-// unused phases zero (as the decoder rebuilds it).
-Segment canonical(Profile p, const Segment& s, int axes) {
-    if (is_arc(s, axes)) return s;
-    Segment c{};
+// Canonical form of a segment into `c` (zero on entry): degenerate phases
+// at their only value, unused phases zero (as the decoder rebuilds it).
+inline void canonical_into(Profile p, const Segment& s, int axes, Segment& c) {
+    if (is_arc(s, axes)) {
+        c = s;
+        return;
+    }
     c.delta = s.delta;
+    if (axes == 2) {
+        // One phase, its arguments as phase_arguments gives them: (L, S) on
+        // the leading-axis profiles, (|dx|, |dy|) on the others; degenerate
+        // as phase_range says (its range is then [default, default + 1)).
+        const std::int64_t x = std::llabs(s.delta[0]), y = std::llabs(s.delta[1]);
+        const bool eight = profile_eight_connected(p);
+        const std::int64_t a = eight ? std::max(x, y) : x, b = eight ? std::min(x, y) : y;
+        const bool degenerate = eight ? (b == 0 || b == a) : (a == 0 || b == 0);
+        c.phase[0] = degenerate ? default_phase(p, a, b) : s.phase[0];
+        return;
+    }
     for (int j = 0; j < phase_count(p, axes); ++j) {
         const auto ab = *phase_arguments(p, s, axes, j);
         const PhaseRange r = phase_range(p, ab.first, ab.second);
         c.phase[static_cast<std::size_t>(j)] = r.hi - r.lo == 1 ? r.lo : s.phase[static_cast<std::size_t>(j)];
     }
-    return c;
 }
 
 // kAxes: the axis count fixed at compile time (the decoder's loop for two
@@ -279,13 +295,11 @@ public:
 
     // Starts the block from the window (docs/FORMAT.md "Table block"): the
     // items of the window's blocks, oldest first, enter the history (and
-    // nothing else) so that matches may copy them. `canon`: the window's
-    // segments in canonical form, in the same order (the encoder's cuts may
-    // not be canonical); null: the window's segments as they are.
+    // nothing else) so that matches may copy them.
     // `more_segs`, `more_items`, `more_starts`: room for the block's own,
     // reserved with the window's (the decoder's estimate; no copy of the
     // primed history).
-    void prime(const WindowView& window, const Segment* canon, std::size_t more_segs = 0, std::size_t more_items = 0,
+    void prime(const WindowView& window, std::size_t more_segs = 0, std::size_t more_items = 0,
                std::size_t more_starts = 0) {
         std::size_t n = 0, c = 0;
         for (const auto& b : window) {
@@ -309,12 +323,25 @@ public:
                 starts_[ci] = w.starts[k];
                 *hp++ = kStartTag | ci++;
                 for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
-                    sp[si] = canon ? canon++ : seg;
+                    sp[si] = seg;
                     *hp++ = kSegTag | si++;
                 }
                 *hp++ = kEndTag;
             }
         }
+    }
+
+    // The encoder's prime(): the window's items as the encoder lists them
+    // (the same history entries over the same segment and start indices),
+    // with its segments in canonical form (its cuts may not be canonical).
+    void prime_from(const std::vector<const Segment*>& segs, const std::vector<std::uint32_t>& items,
+                    const std::vector<Point>& starts, std::size_t nsegs, std::size_t nitems, std::size_t nstarts,
+                    std::size_t more_segs, std::size_t more_items) {
+        segs_.reserve(nsegs + more_segs);
+        hist_.reserve(nitems + more_items);
+        segs_.assign(segs.begin(), segs.begin() + static_cast<std::ptrdiff_t>(nsegs));
+        hist_.assign(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(nitems));
+        starts_.assign(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(nstarts));
     }
 
     bool fail(const char* what) {
@@ -595,17 +622,62 @@ public:
     }
 };
 
-std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+[[gnu::always_inline]] inline std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
     h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
     return h * 0xBF58476D1CE4E5B9ull;
 }
 
-std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
-    std::uint64_t h = tag;
-    for (auto v : d) h = mix(h, static_cast<std::uint64_t>(v));
-    if (ph)
-        for (auto v : *ph) h = mix(h, static_cast<std::uint64_t>(v));
+// Match key of an item: the tag, then every total and (a segment's) every
+// phase mixed in, unused ones included (written out, and inline).
+[[gnu::always_inline]] inline std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
+    static_assert(kMaxAxes == 6);
+    auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+    std::uint64_t h = mix(mix(mix(mix(mix(mix(tag, u(d[0])), u(d[1])), u(d[2])), u(d[3])), u(d[4])), u(d[5]));
+    if (ph) {
+        const auto& f = *ph;
+        h = mix(mix(mix(mix(mix(h, u(f[0])), u(f[1])), u(f[2])), u(f[3])), u(f[4]));
+    }
     return h;
+}
+
+// Keys of two-axis line segments in canonical form, kept by their totals
+// and phase (the only fields such a segment sets) in a direct-mapped table:
+// a key is eleven mixes, and most of a block's segments are shapes seen
+// shortly before. Gives key_of(0, c.delta, &c.phase).
+class LineKeys {
+public:
+    LineKeys() : e_(std::make_unique<Entry[]>(kSize)) {}
+    std::uint64_t operator()(const Segment& c) {
+        if ((c.delta[2] | c.delta[3] | c.delta[4] | c.delta[5]) != 0) return key_of(0, c.delta, &c.phase);
+        auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+        const std::uint64_t h = u(c.delta[0]) * 0x9E3779B97F4A7C15ull ^ u(c.delta[1]) * 0xC2B2AE3D27D4EB4Full ^
+                                u(c.phase[0]) * 0x165667B19E3779F9ull;
+        Entry& e = e_[h >> (64 - kBits)];
+        if (e.dx != c.delta[0] || e.dy != c.delta[1] || e.phase != c.phase[0]) {
+            e = Entry{c.delta[0], c.delta[1], c.phase[0], key_of(0, c.delta, &c.phase)};
+        }
+        return e.key;
+    }
+
+private:
+    static constexpr int kBits = 12;
+    static constexpr std::size_t kSize = std::size_t{1} << kBits;
+    struct Entry {
+        std::int64_t dx = std::numeric_limits<std::int64_t>::min(), dy = 0, phase = 0;  // no segment's totals
+        std::uint64_t key = 0;
+    };
+    std::unique_ptr<Entry[]> e_;
+};
+
+// Segment equality as operator== (every total and phase), without its two
+// memcmp calls.
+inline bool same_segment(const Segment& a, const Segment& b) {
+    static_assert(kMaxAxes == 6);
+    auto d = [](std::int64_t x, std::int64_t y) { return static_cast<std::uint64_t>(x ^ y); };
+    return (d(a.delta[0], b.delta[0]) | d(a.delta[1], b.delta[1]) | d(a.delta[2], b.delta[2]) |
+            d(a.delta[3], b.delta[3]) | d(a.delta[4], b.delta[4]) | d(a.delta[5], b.delta[5]) |
+            d(a.phase[0], b.phase[0]) | d(a.phase[1], b.phase[1]) | d(a.phase[2], b.phase[2]) |
+            d(a.phase[3], b.phase[3]) | d(a.phase[4], b.phase[4])) == 0;
 }
 
 // Normalized frequencies of `count` for precision `prec` (every used symbol
@@ -753,20 +825,6 @@ struct BlockHead {
     std::uint64_t nchains = 0, nsegments = 0, nsteps = 0, grid = 1;
 };
 
-// Gcd of every chain start delta (1 when none or too large).
-std::uint64_t start_grid(const Block& block, const std::vector<std::vector<Segment>>& segs) {
-    std::uint64_t grid = 0;
-    Point ref{};
-    for (std::size_t i = 0; i < block.chains.size(); ++i) {
-        const Chain& chain = block.chains[i];
-        for (int a = 0; a < block.axes; ++a) grid = std::gcd(grid, magnitude(wrap_sub(chain.start[a], ref[a])));
-        ref = chain.start;
-        for (const Segment& s : segs[i])
-            for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
-    }
-    return grid == 0 || grid > (std::uint64_t{1} << 62) ? 1 : grid;
-}
-
 }  // namespace
 
 const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, TableItemKeys* made) {
@@ -780,12 +838,13 @@ const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, Tabl
         }
         t.canon.reserve(w.segments.size());
         t.keys.reserve(w.segments.size() + 2 * w.starts.size());
+        LineKeys line_keys;
         std::size_t k = 0;
         for (std::size_t c = 0; c < w.starts.size(); ++c) {
             t.keys.push_back(key_of(1, w.starts[c], nullptr));
             for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                t.canon.push_back(canonical(p, w.segments[k], axes));
-                t.keys.push_back(key_of(0, t.canon.back().delta, &t.canon.back().phase));
+                canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
+                t.keys.push_back(axes == 2 ? line_keys(t.canon.back()) : key_of(0, t.canon.back().delta, &t.canon.back().phase));
             }
             t.keys.push_back(2);
         }
@@ -801,20 +860,32 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     h.nchains = block.chains.size();
     // The items with their keys.
     std::vector<std::uint32_t> items;  // as history entries: index into cs / deltas
-    std::vector<Segment> cs;
+    std::vector<const Segment*> cs;    // canonical segments: the window's (kept with it), then the block's
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
+    std::size_t own_segs = 0;
+    for (const auto& v : segs) own_segs += v.size();
+    const std::size_t own_items = own_segs + 2 * block.chains.size();
     // The window's items first (matches may reach them), then the block's.
+    {
+        std::size_t nw = 0, ns = 0, nc = 0;
+        if (window)
+            for (const auto& b : *window) {
+                nw += b->items.segments.size() + 2 * b->items.starts.size();
+                ns += b->items.segments.size();
+                nc += b->items.starts.size();
+            }
+        items.reserve(nw + own_items);
+        keys.reserve(nw + own_items);
+        cs.reserve(ns + own_segs);
+        deltas.reserve(nc + block.chains.size());
+    }
     if (window) {
-        std::size_t nw = 0;
-        for (const auto& b : *window) nw += b->items.segments.size() + 2 * b->items.starts.size();
-        items.reserve(nw);
-        keys.reserve(nw);
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
             const TableItemKeys& t = window_keys(*b, p, axes);
             auto si = static_cast<std::uint32_t>(cs.size()), di = static_cast<std::uint32_t>(deltas.size());
-            cs.insert(cs.end(), t.canon.begin(), t.canon.end());
+            for (const Segment& c : t.canon) cs.push_back(&c);
             deltas.insert(deltas.end(), w.starts.begin(), w.starts.end());
             keys.insert(keys.end(), t.keys.begin(), t.keys.end());
             for (std::size_t c = 0; c < w.starts.size(); ++c) {
@@ -824,54 +895,69 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             }
         }
     }
-    const std::size_t first = items.size();
+    const std::size_t first = items.size(), first_seg = cs.size(), first_start = deltas.size();
     // The block's own keys and canonical segments: from `own` (made by an
     // earlier coding of the same items) when it has their count, else
     // computed here.
     const TableItemKeys* mine = nullptr;
-    std::size_t own_segs = 0;
-    for (const auto& v : segs) own_segs += v.size();
     if (own && own->canon.size() == own_segs && own->keys.size() == own_segs + 2 * block.chains.size()) mine = own;
-    const std::size_t first_seg = cs.size();
+    std::vector<Segment> fresh;  // the block's canonical segments when not from `own`
     {
+        auto si = static_cast<std::uint32_t>(cs.size());  // the block's first segment
+        if (mine) {
+            for (const Segment& c : mine->canon) cs.push_back(&c);
+            keys.insert(keys.end(), mine->keys.begin(), mine->keys.end());
+        } else {
+            fresh.reserve(own_segs);  // never grows past: cs points into it
+        }
+        LineKeys line_keys;
+        const bool eight = profile_eight_connected(p);
+        std::uint64_t grid = 0;  // gcd of the start deltas: the grid (1 when none or too large)
         Point ref{};
-        std::size_t kk = 0, kc = 0;  // into mine->keys, mine->canon
         for (std::size_t i = 0; i < block.chains.size(); ++i) {
             const Chain& chain = block.chains[i];
             Point d{};
-            for (int a = 0; a < axes; ++a) d[a] = wrap_sub(chain.start[a], ref[a]);
+            for (int a = 0; a < axes; ++a) {
+                d[a] = wrap_sub(chain.start[a], ref[a]);
+                grid = std::gcd(grid, magnitude(d[a]));
+            }
             deltas.push_back(d);
             items.push_back(kStartTag | static_cast<std::uint32_t>(deltas.size() - 1));
-            keys.push_back(mine ? mine->keys[kk++] : key_of(1, d, nullptr));
+            if (!mine) keys.push_back(key_of(1, d, nullptr));
             ref = chain.start;
             for (const Segment& s : segs[i]) {
-                if (mine) {
-                    cs.push_back(mine->canon[kc++]);
-                    keys.push_back(mine->keys[kk++]);
-                } else {
-                    cs.push_back(canonical(p, s, axes));
-                    keys.push_back(key_of(0, cs.back().delta, &cs.back().phase));
+                if (!mine) {
+                    Segment& c = fresh.emplace_back();
+                    canonical_into(p, s, axes, c);
+                    cs.push_back(&c);
+                    keys.push_back(axes == 2 ? line_keys(c) : key_of(0, c.delta, &c.phase));
                 }
-                items.push_back(kSegTag | static_cast<std::uint32_t>(cs.size() - 1));
-                ++h.nsegments;
-                h.nsteps += item_steps(s, p, axes);
-                for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+                items.push_back(kSegTag | si++);
+                if (axes == 2 && s.delta[4] == 0) {  // a two-axis line: segment_length() written out
+                    const std::uint64_t x = magnitude(s.delta[0]), y = magnitude(s.delta[1]);
+                    h.nsteps += eight ? std::max(x, y) : x + y;
+                } else {
+                    h.nsteps += is_arc(s, axes) ? item_steps(s, p, axes)
+                                                : static_cast<std::uint64_t>(segment_length(s.delta, axes, eight));
+                }
+                if (axes == 2) {
+                    ref[0] = wrap_add(ref[0], s.delta[0]);
+                    ref[1] = wrap_add(ref[1], s.delta[1]);
+                } else {
+                    for (int a = 0; a < axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+                }
             }
             items.push_back(kEndTag);
-            keys.push_back(2);
-            kk += mine ? 1 : 0;
+            if (!mine) keys.push_back(2);
         }
+        h.nsegments = own_segs;
+        h.grid = grid == 0 || grid > (std::uint64_t{1} << 62) ? 1 : grid;
     }
-    if (made && !mine) {
-        made->canon.assign(cs.begin() + static_cast<std::ptrdiff_t>(first_seg), cs.end());
-        made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
-    }
-    h.grid = start_grid(block, segs);
     auto same = [&](std::size_t a, std::size_t b) {
         if (keys[a] != keys[b]) return false;
         const std::uint32_t x = items[a], y = items[b];
         if ((x & ~kIndexMask) != (y & ~kIndexMask)) return false;
-        if ((x & ~kIndexMask) == kSegTag) return cs[x & kIndexMask] == cs[y & kIndexMask];
+        if ((x & ~kIndexMask) == kSegTag) return same_segment(*cs[x & kIndexMask], *cs[y & kIndexMask]);
         if ((x & ~kIndexMask) == kStartTag) return deltas[x & kIndexMask] == deltas[y & kIndexMask];
         return true;
     };
@@ -894,11 +980,17 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     TableCoder<EncSide>& coder = pass->coder;
     coder.raw_minors_ = raw_minors;
     coder.grid_ = static_cast<std::int64_t>(h.grid);
-    if (window) coder.prime(*window, cs.data());  // the window's segments come first in cs
+    if (window) {
+        coder.prime_from(cs, items, deltas, first_seg, first, first_start, own_segs, n - first);
+    } else {
+        coder.segs_.reserve(own_segs);
+        coder.hist_.reserve(n);
+    }
+    io.syms.reserve(n - first);
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
-        return shape_key[id] == keys[item] && *coder.segs_[coder.shape_[id]] == cs[items[item] & kIndexMask];
+        return shape_key[id] == keys[item] && same_segment(*coder.segs_[coder.shape_[id]], *cs[items[item] & kIndexMask]);
     };
 
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
@@ -917,10 +1009,11 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     for (std::size_t i = first; i < n;) {
         // A match: a repeat offset first, then the hash candidate.
         std::size_t len = 0, off = 0;
+        std::size_t rep_len[3] = {0, 0, 0};  // (0 for a repeat offset past the start)
         for (int r = 0; r < 3; ++r) {
             const std::uint64_t o = coder.rep_[static_cast<std::size_t>(r)];
             if (o > i) continue;
-            const std::size_t l = match_len(i, i - o);
+            const std::size_t l = rep_len[r] = match_len(i, i - o);
             if (l > len) {
                 len = l;
                 off = o;
@@ -933,7 +1026,9 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             table[hh] = static_cast<std::uint32_t>(i + 1);
             if (cand != 0) {
                 const std::size_t j = cand - 1;
-                const std::size_t l = match_len(i, j);
+                // At a repeat offset the length is the one just measured.
+                const int r = i - j == coder.rep_[0] ? 0 : i - j == coder.rep_[1] ? 1 : i - j == coder.rep_[2] ? 2 : -1;
+                const std::size_t l = r >= 0 ? rep_len[r] : match_len(i, j);
                 if (l >= min_match && l > len + 2) {
                     len = l;
                     off = i - j;
@@ -962,8 +1057,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         } else if (kind == kEndTag) {
             coder.code_op(kOpEnd);
             coder.code_end();
-        } else if (is_arc(cs[e & kIndexMask], axes)) {
-            const Segment& want = cs[e & kIndexMask];
+        } else if (is_arc(*cs[e & kIndexMask], axes)) {
+            const Segment& want = *cs[e & kIndexMask];
             if (coder.arc_method_ < 0) coder.arc_method_ = static_cast<int>(want.delta[5]);
             const unsigned op = arc_ccw(want) ? kOpArc + 1 : kOpArc;
             coder.code_op(op);
@@ -986,7 +1081,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                     io.raw(nb, extra);
                     coder.take_shape(coder.recent_.at(q), true, q);
                 } else {
-                    const Segment& want = cs[e & kIndexMask];
+                    const Segment& want = *cs[e & kIndexMask];
                     unsigned op = kOpFull;
                     if (axes == 2) {
                         const int lead = leading_axis(want.delta, 2);
@@ -1056,12 +1151,19 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             put_table(out, count, enc[static_cast<std::size_t>(t)]);
         }
     RansEncoder rans;
+    rans.reserve(io.syms.size());
     for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
     const std::string stream = rans.finish();
     const std::string extra_bits = io.bits.finish();
+    out.reserve(out.size() + 10 + stream.size() + extra_bits.size());
     put_varint(out, stream.size());
     out += stream;
     out += extra_bits;
+    if (made && !mine) {
+        made->canon = std::move(fresh);
+        if (first == 0) made->keys = std::move(keys);
+        else made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
+    }
     return out;
 }
 
@@ -1126,7 +1228,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
         const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
-            coder.prime(*window, nullptr, segs, hist, starts);
+            coder.prime(*window, segs, hist, starts);
         } else {
             coder.segs_.reserve(segs);
             coder.hist_.reserve(hist);
@@ -1157,8 +1259,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     // The buffer's first size: the block's mean chain length.
     StepBuffer steps(static_cast<std::size_t>(
         std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16)));
-    // Takes a line segment (not an arc) into the output.
-    auto take_line = [&](const Segment& seg) -> const char* {
+    // Takes a line segment (not an arc) into the output (inline at both
+    // calls).
+    auto take_line = [&](const Segment& seg) __attribute__((always_inline)) -> const char* {
         if (!in_chain) return "segment outside a chain";
         const auto n = static_cast<std::uint64_t>(segment_length(seg.delta, axes, eight));
         if (seen_segments == h.nsegments || seen_steps + n > h.nsteps) return "more segments or steps than declared";
@@ -1273,8 +1376,13 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             if (len > max_items - coder.hist_.size()) return fail("match longer than the block");
             const std::size_t from = coder.hist_.size();
             coder.copy(off, len);
-            for (std::size_t k = from; k < coder.hist_.size(); ++k)
-                if (const char* e = take(coder.hist_[k])) return fail(e);
+            for (std::size_t k = from; k < coder.hist_.size(); ++k) {
+                // A copied line segment straight to take_line (as take does).
+                const std::uint32_t e = coder.hist_[k];
+                const Segment* seg = (e & ~kIndexMask) == kSegTag ? coder.segs_[e & kIndexMask] : nullptr;
+                const char* bad = seg && !is_arc(*seg, axes) ? take_line(*seg) : take(e);
+                if (bad) return fail(bad);
+            }
             continue;
         }
         if (io.failed || io.rans.failed || io.bits.failed) return fail("bad item");

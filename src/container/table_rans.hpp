@@ -49,11 +49,14 @@ public:
     void put(const EncodeTable& t, unsigned sym) {
         ops_.push_back({&t, sym});
     }
+    /// Room for `n` symbols.
+    void reserve(std::size_t n) { ops_.reserve(n); }
     /// The stream: two u32 states (little-endian), then 16-bit words
     /// (little-endian) in the order the decoder reads them.
     std::string finish() {
         std::uint64_t x[2] = {kRansLow, kRansLow};
         std::vector<std::uint16_t> words;
+        words.reserve(ops_.size());  // at most one word per symbol
         for (std::size_t i = ops_.size(); i-- > 0;) {
             const EncodeTable& t = *ops_[i].table;
             const std::uint64_t f = t.freq[ops_[i].sym];

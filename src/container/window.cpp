@@ -61,6 +61,9 @@ SegmentItems segment_items(const Block& block, const std::vector<std::vector<Seg
     SegmentItems out;
     out.starts.reserve(block.chains.size());
     out.counts.reserve(block.chains.size());
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < block.chains.size(); ++i) n += segs[i].size();
+    out.segments.reserve(n);
     Point ref{};
     for (std::size_t i = 0; i < block.chains.size(); ++i) {
         const Chain& chain = block.chains[i];
@@ -69,10 +72,18 @@ SegmentItems segment_items(const Block& block, const std::vector<std::vector<Seg
         out.starts.push_back(d);
         out.counts.push_back(static_cast<std::uint32_t>(segs[i].size()));
         ref = chain.start;
-        for (const Segment& s : segs[i]) {
-            out.segments.push_back(s);
-            out.arcs = out.arcs || is_arc(s, block.axes);
-            for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+        if (block.axes == 2) {
+            for (const Segment& s : segs[i]) {
+                out.segments.push_back(s);
+                out.arcs = out.arcs || is_arc(s, 2);
+                ref[0] = wrap_add(ref[0], s.delta[0]);
+                ref[1] = wrap_add(ref[1], s.delta[1]);
+            }
+        } else {
+            for (const Segment& s : segs[i]) {
+                out.segments.push_back(s);
+                for (int a = 0; a < block.axes; ++a) ref[a] = wrap_add(ref[a], s.delta[a]);
+            }
         }
     }
     return out;
