@@ -25,6 +25,10 @@
 #include <new>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include "range_coder.hpp"
 
 namespace stepzip::stz {
@@ -101,17 +105,38 @@ struct HashedTables {
     static constexpr std::size_t kChunks = kEntries >> kChunkBits;
 
     HashedTables() {
+        constexpr std::size_t bytes = kEntries * sizeof(HashedProb);
+#if defined(__linux__)
+        // Fresh zero pages, in 2 MiB pages where the kernel allows (as the
+        // context-mixing step model's rows): a block of a few thousand
+        // segments touches every 4 KiB page of the 32 MiB, 8192 page faults
+        // (most of -L 19's system time on a 25 KB file), against 16.
+        size_ = bytes + kHuge;
+        void* m = mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (m == MAP_FAILED) throw std::bad_alloc();
+        map_ = m;
+        const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(m) + kHuge - 1) & ~(kHuge - 1);
+        madvise(reinterpret_cast<void*>(a), bytes, MADV_HUGEPAGE);
+        entries = reinterpret_cast<HashedProb*>(a);
+#else
         // calloc of a fresh block this large maps zero pages that cost only
         // where they are touched; the entries are aligned to cache lines so
         // that a row of 16 (one slot group) is one line.
-        raw_ = std::calloc(kEntries * sizeof(HashedProb) + 64, 1);
+        raw_ = std::calloc(bytes + 64, 1);
         if (!raw_) throw std::bad_alloc();
         const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(raw_) + 63) & ~std::uintptr_t{63};
         entries = reinterpret_cast<HashedProb*>(a);
+#endif
     }
     HashedTables(const HashedTables&) = delete;
     HashedTables& operator=(const HashedTables&) = delete;
-    ~HashedTables() { std::free(raw_); }
+    ~HashedTables() {
+#if defined(__linux__)
+        munmap(map_, size_);
+#else
+        std::free(raw_);
+#endif
+    }
 
     /// Back to all zero: only the chunks flagged dirty are cleared.
     void clear() noexcept {
@@ -127,7 +152,13 @@ struct HashedTables {
     bool busy = false;
 
 private:
+#if defined(__linux__)
+    static constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    void* map_ = nullptr;
+    std::size_t size_ = 0;
+#else
     void* raw_ = nullptr;
+#endif
 };
 
 // The tables of the calling thread, kept from one predictor to the next
