@@ -208,7 +208,8 @@ bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned ty
 }
 
 // `sample_cm`: the model's size on the sample of a block over
-// kCmSampleSteps when cm_step_model_first() made it (0: not made).
+// kCmSampleSteps when cm_step_model_first() made it, on the whole block of
+// at most kCmSampleSteps when cm_small_first() made it (0: not made).
 bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
                            std::size_t sample_cm = 0) {
     const Block& block = job.block;
@@ -221,18 +222,19 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
         if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
         const Block& b = whole ? block : sample;
         const Cut& c = whole ? job.cut : cut;
-        const std::size_t cm = !whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        const std::size_t cm = sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
         return cm < write_segment_model(b, s.profile, c, nullptr, false, true).size();
     }
     if (type == kStepModel) {
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
         const Block& b = whole ? block : sample;
-        return write_cm_step_model(b).size() < write_mixed_step_model(b, 1).size();
+        const std::size_t cm = whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        return cm < write_mixed_step_model(b, 1).size();
     }
     // A table block (arcs): on the whole block only. Not a raw block: the
     // window holds no steps of a block the first pass made raw
     // (compress.cpp), so it cannot become a step-model block.
-    return type == kTable && whole && write_cm_step_model(block).size() + 8 < best.size();
+    return type == kTable && whole && (sample_cm != 0 ? sample_cm : write_cm_step_model(block).size()) + 8 < best.size();
 }
 
 // A block of more than kCmSampleSteps steps that the context-mixing step
@@ -409,6 +411,74 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
 
+// A first block of at most kThoroughSampleSteps steps is the profiles'
+// ranking trial itself (every profile, the optimal segmenter, every cut,
+// the segment model of each: two thirds of -L 19's time on a 25 KB glyph
+// file). At the strong levels under --profile auto such a two-axis block
+// is first checked for the context-mixing step model on the whole block,
+// under the profile whose greedy or default-phase cut codes smallest by
+// the plain segment model (profiles too dense for the segment model left
+// out; that profile won the ranking on every corpus file the model
+// codes): it is the model's when the model codes it in at most
+// (kCmPlainGain - 1) / kCmPlainGain of that plain model's size, or else
+// in at most (kCmFirstMargin - 1) / kCmFirstMargin of its mixed coding
+// (as cm_step_model_first()). The model's payload is then the block's
+// record (no window: the first block's), and the ranking is skipped. On
+// corpora/ the model came to 0.60-0.70 of the plain segment model on
+// glyph and traced contours and 0.76 on hershey-pages-grbl.fc (0.93 of
+// the mixed one), 0.96-1.33 on the other plots (chosen on
+// corpora/glyphs/c059-8.fc, traced/icons-8.fc, plotter/hershey-pages-grbl.fc
+// and plotter/hershey-eval4.fc). Otherwise the profiles are ranked as
+// before and `cm_first_size` keeps the model's size for the block's choice.
+constexpr std::size_t kCmPlainGain = 4;
+
+bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s) {
+    if (s.level < kStrongLevel || s.timed || !s.thorough || s.profile_named || first.axes != 2 || steps == 0 ||
+        steps > kThoroughSampleSteps || first.chains.size() > kMaxBlockChains)
+        return false;
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    std::size_t plain = SIZE_MAX;
+    Profile guess = s.profile;
+    Cut guess_cut;
+    for (Profile p : kAllProfiles) {
+        if (!representable(first, p, first.axes)) continue;
+        Cut segs;
+        SegmentStats stats;
+        if (!segment_block(first, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) continue;
+        std::uint64_t nsegs = 0;
+        for (const auto& v : segs) nsegs += v.size();
+        if (nsegs * 1000 > kStepModelOnly * steps) continue;  // the step model's ground
+        greedy.profile = p;
+        std::vector<Cut> cuts = model_cuts(first, greedy, std::move(segs), false);
+        std::size_t which = 0;
+        const std::size_t n = smallest_segment_model(first, p, cuts, which, false).size();
+        if (n < plain) {
+            plain = n;
+            guess = p;
+            guess_cut = std::move(cuts[which]);
+        }
+    }
+    if (plain == SIZE_MAX) return false;  // random walks: ranked by their segments
+    auto model = std::make_shared<std::string>(write_cm_step_model(first));
+    const std::size_t cm = model->size();
+    bool take = cm != 0 && cm * kCmPlainGain <= plain * (kCmPlainGain - 1);
+    if (!take && cm != 0) {
+        const std::size_t mixed = write_segment_model(first, guess, guess_cut, nullptr, false, true).size();
+        take = cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
+    }
+    s.cm_first_chains = first.chains.size();
+    s.cm_first_steps = steps;
+    if (!take) {
+        s.cm_first_size = cm;
+        return false;
+    }
+    s.profile = guess;
+    s.cm_first = true;
+    s.cm_first_model = std::move(model);
+    return true;
+}
+
 }  // namespace
 
 // What a profile trial made: the segmenter's cut, its statistics and, but
@@ -504,6 +574,25 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
     return best;
 }
 
+// The first block's context-mixing step model made by cm_small_first()
+// as its record: what cm_pass() makes of it (the first block's window is
+// empty), the step model at order 1 when the model cannot code it.
+void take_cm_first(BlockJob& job, const std::string& model) {
+    if (model.empty() || model.size() > kMaxBlockPayload) {
+        const std::string plain = write_step_model(job.block, 1);
+        if (plain.empty() || plain.size() > kMaxBlockPayload) {
+            job.error = make_error(Errc::limit, "block of chain " + std::to_string(job.first_chain + 1) +
+                                                    ": the step model cannot code it");
+            return;
+        }
+        job.record = make_stored_record(kStepModel, job.flags, plain);
+        job.cm = false;
+        return;
+    }
+    job.record = make_stored_record(kMixedModel, job.flags, model);
+    job.cm_coded = true;
+}
+
 }  // namespace
 
 TableEffort table_effort(int level) {
@@ -523,7 +612,9 @@ int window_log_for_level(int level) {
 
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
-    if (!s.profile_named && s.thorough) {
+    if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s)) {
+        // (a small first block left to the context-mixing step model)
+    } else if (!s.profile_named && s.thorough) {
         // A sample of kThoroughSampleSteps ranks the profiles, as the
         // sample of the fast levels (the whole block when smaller).
         const std::uint64_t steps = step_count(first);
@@ -560,8 +651,16 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
                 const std::size_t at = static_cast<std::size_t>(std::find(sizes, sizes + std::size(kAllProfiles), least) - sizes);
                 EncoderSettings probe_settings = s;
                 probe_settings.profile = kAllProfiles[at];
-                if (least != SIZE_MAX && cm_step_model_first(first, steps, probe_settings)) {
+                std::size_t sample_cm = 0;
+                if (least != SIZE_MAX && cm_step_model_first(first, steps, probe_settings, &sample_cm)) {
                     candidates.assign(1, kAllProfiles[at]);
+                    s.cm_first = true;
+                    s.cm_first_chains = first.chains.size();
+                    s.cm_first_steps = steps;
+                } else if (least != SIZE_MAX) {
+                    // (the block's own choice need not check again under this profile)
+                    s.cm_first_declined = kAllProfiles[at];
+                    s.cm_first_sample = sample_cm;
                     s.cm_first_chains = first.chains.size();
                     s.cm_first_steps = steps;
                 }
@@ -629,12 +728,19 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool fits = block.axes == s.axes && block.chains.size() <= kMaxBlockChains;
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
-    const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
-                          s.cm_first_steps == job.steps;
-    std::size_t sample_cm = 0;  // the model's size on the block's sample, when made
-    if (known_cm || cm_step_model_first(block, job.steps, s, &sample_cm)) {
+    // What choose_frame_settings() found out about this block (the first).
+    const bool first = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
+                       s.cm_first_steps == job.steps;
+    const bool known_cm = first && s.cm_first;
+    const bool declined = first && s.cm_first_declined == s.profile;
+    // The model's size on the block's sample, or on the whole block of at
+    // most kCmSampleSteps, when made.
+    std::size_t sample_cm = declined ? s.cm_first_sample : 0;
+    if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
+    if (known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm))) {
         // A step-model block, coded by the context-mixing model in the
-        // second pass (cm_pass(); no record until then).
+        // second pass (cm_pass(); no record until then), or here when
+        // choose_frame_settings() made the model.
         job.cm = true;
         job.type = kStepModel;
         job.order = 1;
@@ -644,6 +750,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             w->first_type = kStepModel;
             job.contribution = std::move(w);
         }
+        if (known_cm && s.cm_first_model) take_cm_first(job, *s.cm_first_model);
         return;
     }
     bool segment_model_only = false;
@@ -891,6 +998,7 @@ void cm_pass(BlockJob& job, const WindowView& window) {
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.cm) {
+        if (job.cm_coded) return;
         cm_pass(job, window);
         if (job.cm || job.error.code != Errc::ok) return;
     }
