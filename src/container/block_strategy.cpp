@@ -431,35 +431,52 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
 // and plotter/hershey-eval4.fc). Otherwise the profiles are ranked as
 // before and `cm_first_size` keeps the model's size for the block's choice.
 constexpr std::size_t kCmPlainGain = 4;
+// Steps spread over the block on which the profile is guessed.
+constexpr std::uint64_t kGuessSteps = 1u << 13;
+
+// The plain segment model of `block` under `p`, the smaller of its greedy
+// and default-phase cuts (that cut in `cut`); SIZE_MAX when `p` cannot
+// represent the block or its greedy cut is too dense for the segment model.
+std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettings& s, Cut& cut) {
+    if (!representable(block, p, block.axes)) return SIZE_MAX;
+    Cut segs;
+    SegmentStats stats;
+    if (!segment_block(block, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return SIZE_MAX;
+    std::uint64_t nsegs = 0;
+    for (const auto& v : segs) nsegs += v.size();
+    if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX;  // the step model's ground
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    greedy.profile = p;
+    std::vector<Cut> cuts = model_cuts(block, greedy, std::move(segs), false);
+    std::size_t which = 0;
+    const std::size_t n = smallest_segment_model(block, p, cuts, which, false).size();
+    cut = std::move(cuts[which]);
+    return n;
+}
 
 bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || s.profile_named || first.axes != 2 || steps == 0 ||
         steps > kThoroughSampleSteps || first.chains.size() > kMaxBlockChains)
         return false;
-    EncoderSettings greedy = s;
-    greedy.segmenter = SegmenterKind::greedy;
-    std::size_t plain = SIZE_MAX;
+    // The profile: the smallest on kGuessSteps spread over the block.
+    const bool sampled = steps > kGuessSteps;
+    const Block sample = sampled ? sample_of(first, kGuessSteps) : Block{};
+    std::size_t least = SIZE_MAX;
     Profile guess = s.profile;
     Cut guess_cut;
     for (Profile p : kAllProfiles) {
-        if (!representable(first, p, first.axes)) continue;
-        Cut segs;
-        SegmentStats stats;
-        if (!segment_block(first, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) continue;
-        std::uint64_t nsegs = 0;
-        for (const auto& v : segs) nsegs += v.size();
-        if (nsegs * 1000 > kStepModelOnly * steps) continue;  // the step model's ground
-        greedy.profile = p;
-        std::vector<Cut> cuts = model_cuts(first, greedy, std::move(segs), false);
-        std::size_t which = 0;
-        const std::size_t n = smallest_segment_model(first, p, cuts, which, false).size();
-        if (n < plain) {
-            plain = n;
+        Cut cut;
+        const std::size_t n = greedy_plain_size(sampled ? sample : first, p, s, cut);
+        if (n < least) {
+            least = n;
             guess = p;
-            guess_cut = std::move(cuts[which]);
+            guess_cut = std::move(cut);
         }
     }
-    if (plain == SIZE_MAX) return false;  // random walks: ranked by their segments
+    if (least == SIZE_MAX) return false;  // random walks: ranked by their segments
+    const std::size_t plain = sampled ? greedy_plain_size(first, guess, s, guess_cut) : least;
+    if (plain == SIZE_MAX) return false;
     auto model = std::make_shared<std::string>(write_cm_step_model(first));
     const std::size_t cm = model->size();
     bool take = cm != 0 && cm * kCmPlainGain <= plain * (kCmPlainGain - 1);
