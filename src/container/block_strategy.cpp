@@ -387,6 +387,8 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
+// `sample_cm`, when given: the model's size on the sample if known (not 0),
+// set to it when made.
 bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
         steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
@@ -406,7 +408,9 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     std::size_t which = 0;
     smallest_segment_model(sample, s.profile, cuts, which, false);
     const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
-    const std::size_t cm = write_cm_step_model(sample).size();
+    // (the sample is the same under every profile: its model's size, when
+    // known, is not made again)
+    const std::size_t cm = sample_cm && *sample_cm != 0 ? *sample_cm : write_cm_step_model(sample).size();
     if (sample_cm) *sample_cm = cm;
     return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
 }
@@ -455,27 +459,41 @@ std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettin
     return n;
 }
 
+// The profile whose greedy or default-phase cut codes kGuessSteps spread
+// over `block` smallest by the plain segment model (greedy_plain_size());
+// false when every profile is too dense for the segment model there.
+// `cut` and `size`: that cut and size when the sample is the whole block
+// (else empty and 0).
+bool guess_profile(const Block& block, const EncoderSettings& s, Profile& guess, Cut& cut, std::size_t& size) {
+    const bool sampled = step_count(block) > kGuessSteps;
+    const Block sample = sampled ? sample_of(block, kGuessSteps) : Block{};
+    size = SIZE_MAX;
+    for (Profile p : kAllProfiles) {
+        Cut c;
+        const std::size_t n = greedy_plain_size(sampled ? sample : block, p, s, c);
+        if (n < size) {
+            size = n;
+            guess = p;
+            cut = std::move(c);
+        }
+    }
+    if (size == SIZE_MAX) return false;
+    if (sampled) {  // (not the whole block's)
+        cut.clear();
+        size = 0;
+    }
+    return true;
+}
+
 bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || s.profile_named || first.axes != 2 || steps == 0 ||
         steps > kThoroughSampleSteps || first.chains.size() > kMaxBlockChains)
         return false;
-    // The profile: the smallest on kGuessSteps spread over the block.
-    const bool sampled = steps > kGuessSteps;
-    const Block sample = sampled ? sample_of(first, kGuessSteps) : Block{};
-    std::size_t least = SIZE_MAX;
     Profile guess = s.profile;
     Cut guess_cut;
-    for (Profile p : kAllProfiles) {
-        Cut cut;
-        const std::size_t n = greedy_plain_size(sampled ? sample : first, p, s, cut);
-        if (n < least) {
-            least = n;
-            guess = p;
-            guess_cut = std::move(cut);
-        }
-    }
-    if (least == SIZE_MAX) return false;  // random walks: ranked by their segments
-    const std::size_t plain = sampled ? greedy_plain_size(first, guess, s, guess_cut) : least;
+    std::size_t plain = 0;
+    if (!guess_profile(first, s, guess, guess_cut, plain)) return false;  // random walks: ranked by their segments
+    if (plain == 0) plain = greedy_plain_size(first, guess, s, guess_cut);
     if (plain == SIZE_MAX) return false;
     auto model = std::make_shared<std::string>(write_cm_step_model(first));
     const std::size_t cm = model->size();
@@ -648,39 +666,42 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
             for (Profile p : kAllProfiles)
                 if (representable(first, p, first.axes)) candidates.push_back(p);
         } else {
-            const Block small = sample_of(first, kSampleSteps);
-            std::size_t sizes[std::size(kAllProfiles)];
-            std::size_t least = SIZE_MAX;
-            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
-                const Profile p = kAllProfiles[i];
-                sizes[i] = representable(first, p, first.axes) ? trial_size(small, p, s) : SIZE_MAX;
-                least = std::min(least, sizes[i]);
-            }
-            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
-                if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
-                    candidates.push_back(kAllProfiles[i]);
             // At the strong levels, a first block that the context-mixing
-            // step model codes (cm_step_model_first(), under the best
-            // profile of the small sample) keeps that profile: the trial
+            // step model codes (cm_step_model_first(), under the profile
+            // guessed by guess_profile()) keeps that profile: the ranking
             // ranks segment models, which then code none of it (a third of
-            // -L 19's time on a 0.5 MB glyph file).
-            if (candidates.size() > 1) {
-                const std::size_t at = static_cast<std::size_t>(std::find(sizes, sizes + std::size(kAllProfiles), least) - sizes);
+            // -L 19's time on a 0.5 MB glyph file, a quarter on 0.3 MB).
+            // The block's own choice takes what the check found.
+            Profile guess = s.profile;
+            Cut unused_cut;
+            std::size_t unused_size = 0;
+            if (s.level >= kStrongLevel && !s.timed && first.axes == 2 &&
+                guess_profile(first, s, guess, unused_cut, unused_size)) {
                 EncoderSettings probe_settings = s;
-                probe_settings.profile = kAllProfiles[at];
+                probe_settings.profile = guess;
                 std::size_t sample_cm = 0;
-                if (least != SIZE_MAX && cm_step_model_first(first, steps, probe_settings, &sample_cm)) {
-                    candidates.assign(1, kAllProfiles[at]);
+                s.cm_first_chains = first.chains.size();
+                s.cm_first_steps = steps;
+                if (cm_step_model_first(first, steps, probe_settings, &sample_cm)) {
+                    candidates.assign(1, guess);
                     s.cm_first = true;
-                    s.cm_first_chains = first.chains.size();
-                    s.cm_first_steps = steps;
-                } else if (least != SIZE_MAX) {
-                    // (the block's own choice need not check again under this profile)
-                    s.cm_first_declined = kAllProfiles[at];
+                } else {
+                    s.cm_first_declined = guess;
                     s.cm_first_sample = sample_cm;
-                    s.cm_first_chains = first.chains.size();
-                    s.cm_first_steps = steps;
                 }
+            }
+            if (candidates.empty()) {
+                const Block small = sample_of(first, kSampleSteps);
+                std::size_t sizes[std::size(kAllProfiles)];
+                std::size_t least = SIZE_MAX;
+                for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
+                    const Profile p = kAllProfiles[i];
+                    sizes[i] = representable(first, p, first.axes) ? trial_size(small, p, s) : SIZE_MAX;
+                    least = std::min(least, sizes[i]);
+                }
+                for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
+                    if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
+                        candidates.push_back(kAllProfiles[i]);
             }
         }
         const bool whole = steps <= kThoroughSampleSteps;
@@ -752,7 +773,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool declined = first && s.cm_first_declined == s.profile;
     // The model's size on the block's sample, or on the whole block of at
     // most kCmSampleSteps, when made.
-    std::size_t sample_cm = declined ? s.cm_first_sample : 0;
+    std::size_t sample_cm = first ? s.cm_first_sample : 0;
     if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
     if (known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm))) {
         // A step-model block, coded by the context-mixing model in the
