@@ -207,10 +207,25 @@ bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned ty
     return type != kTable || wins(write_light_cm_step_model(block).size() + 8, best.size());
 }
 
+// A step-model block of more than kMixSampleSteps steps is coded mixed only
+// when its first chains (kMixSampleSteps steps, cut short, no window), or
+// the sample of the context-mixing check when the first pass made one
+// (cm_step_model_may_win()), are at least 1/kMixSampleGain smaller mixed
+// than plain at order 1: on random
+// walks mixing saves about 1 % (the block stays type 4) and the mixed
+// encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
+// (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
+constexpr std::size_t kMixSampleGain = 32;
+
+// Whether mixed_pass() codes the step-model block `job` mixed.
+bool mixed_pays(const BlockJob& job) {
+    return job.mixed_pays >= 0 ? job.mixed_pays != 0 : mixed_step_model_pays(job.block);
+}
+
 // `sample_cm`: the model's size on the sample of a block over
 // kCmSampleSteps when cm_step_model_first() made it, on the whole block of
 // at most kCmSampleSteps when cm_small_first() made it (0: not made).
-bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
+bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
                            std::size_t sample_cm = 0) {
     const Block& block = job.block;
     if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
@@ -229,7 +244,15 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
         const Block& b = whole ? block : sample;
         const std::size_t cm = whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
-        return cm < write_mixed_step_model(b, 1).size();
+        const std::size_t mixed = write_mixed_step_model(b, 1).size();
+        // Whether the mixed step model pays is decided on this sample too
+        // (mixed_step_model_pays() codes another one, the block's first
+        // kMixSampleSteps steps: a fifth of -L 19's time on a random walk).
+        if (!whole) {
+            const std::size_t plain = write_step_model(b, 1).size();
+            job.mixed_pays = mixed * kMixSampleGain <= plain * (kMixSampleGain - 1);
+        }
+        return cm < mixed;
     }
     // A table block (arcs): on the whole block only. Not a raw block: the
     // window holds no steps of a block the first pass made raw
@@ -960,7 +983,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             return true;
         if (mixed_size == 0) {
             const std::string m = type == kSegmentModel ? write_segment_model(block, s.profile, job.cut, nullptr, false, true)
-                                  : mixed_step_model_pays(block) ? write_mixed_step_model(block, 1)
+                                  : mixed_pays(job) ? write_mixed_step_model(block, 1)
                                                                  : std::string();
             const std::size_t size = m.empty() ? SIZE_MAX : make_stored_record(kMixedModel, job.flags, m).size();
             mixed_size = size * 64 <= best.size() * 63 ? size : SIZE_MAX;
@@ -1097,13 +1120,6 @@ void note_items(BlockJob& job) {
         job.contribution->items = segment_items(job.block, job.cut);
 }
 
-// A step-model block of more than kMixSampleSteps steps is coded mixed only
-// when its first chains (kMixSampleSteps steps, cut short, no window) are
-// at least 1/kMixSampleGain smaller mixed than plain at order 1: on random
-// walks mixing saves about 1 % (the block stays type 4) and the mixed
-// encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
-// (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
-constexpr std::size_t kMixSampleGain = 32;
 
 bool mixed_step_model_pays(const Block& block) {
     if (step_count(block) <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
@@ -1143,7 +1159,7 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
     // The hashed models see the long contexts: a short primary order wins
     // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4;
     // order 2 as well won nowhere in corpora/).
-    if (!mixed_step_model_pays(job.block)) return;
+    if (!mixed_pays(job)) return;
     keep(write_mixed_step_model(job.block, 1, w));
 }
 

@@ -96,6 +96,9 @@ struct BlockJob {
     bool cm = false;  ///< the strong levels: coded by the context-mixing step model in the second pass
     bool cm_light = false;  ///< with cm: the light model (the fast levels)
     bool cm_coded = false;  ///< with cm: `record` is the model's already (the frame's first block)
+    /// Step-model block: whether its mixed coding is tried (1) or not (0),
+    /// when the first pass decided it on its sample; -1: mixed_step_model_pays().
+    int mixed_pays = -1;
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
 
