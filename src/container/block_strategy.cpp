@@ -663,19 +663,10 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
 
 // The first block's context-mixing step model made by cm_small_first()
 // as its record: what cm_pass() makes of it (the first block's window is
-// empty), the step model at order 1 when the model cannot code it.
+// empty). A model that cannot code the block is left to cm_pass(), which
+// finds so again and gives the block to the step model.
 void take_cm_first(BlockJob& job, const std::string& model) {
-    if (model.empty() || model.size() > kMaxBlockPayload) {
-        const std::string plain = write_step_model(job.block, 1);
-        if (plain.empty() || plain.size() > kMaxBlockPayload) {
-            job.error = make_error(Errc::limit, "block of chain " + std::to_string(job.first_chain + 1) +
-                                                    ": the step model cannot code it");
-            return;
-        }
-        job.record = make_stored_record(kStepModel, job.flags, plain);
-        job.cm = false;
-        return;
-    }
+    if (model.empty() || model.size() > kMaxBlockPayload) return;
     job.record = make_stored_record(kMixedModel, job.flags, model);
     job.cm_coded = true;
 }
