@@ -464,14 +464,18 @@ constexpr std::uint64_t kGuessSteps = 1u << 13;
 // The plain segment model of `block` under `p`, the smaller of its greedy
 // and default-phase cuts (that cut in `cut`); SIZE_MAX when `p` cannot
 // represent the block or its greedy cut is too dense for the segment model.
-std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettings& s, Cut& cut) {
+std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettings& s, Cut& cut,
+                              std::uint64_t* dense_segments = nullptr) {
     if (!representable(block, p, block.axes)) return SIZE_MAX;
     Cut segs;
     SegmentStats stats;
     if (!segment_block(block, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return SIZE_MAX;
     std::uint64_t nsegs = 0;
     for (const auto& v : segs) nsegs += v.size();
-    if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX;  // the step model's ground
+    if (nsegs * 1000 > kStepModelOnly * step_count(block)) {  // the step model's ground
+        if (dense_segments) *dense_segments = nsegs;
+        return SIZE_MAX;
+    }
     EncoderSettings greedy = s;
     greedy.segmenter = SegmenterKind::greedy;
     greedy.profile = p;
@@ -486,21 +490,31 @@ std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettin
 // over `block` smallest by the plain segment model (greedy_plain_size());
 // false when every profile is too dense for the segment model there.
 // `cut` and `size`: that cut and size when the sample is the whole block
-// (else empty and 0).
-bool guess_profile(const Block& block, const EncoderSettings& s, Profile& guess, Cut& cut, std::size_t& size) {
+// (else empty and 0). `fewest`: when every profile that can represent the
+// sample is too dense there (random walks), the one with the fewest
+// segments (the first on a tie), as the ranking orders them.
+bool guess_profile(const Block& block, const EncoderSettings& s, Profile& guess, Cut& cut, std::size_t& size,
+                   std::optional<Profile>* fewest = nullptr) {
     const bool sampled = step_count(block) > kGuessSteps;
     const Block sample = sampled ? sample_of(block, kGuessSteps) : Block{};
     size = SIZE_MAX;
+    std::uint64_t least_segments = UINT64_MAX;
     for (Profile p : kAllProfiles) {
         Cut c;
-        const std::size_t n = greedy_plain_size(sampled ? sample : block, p, s, c);
+        std::uint64_t segments = UINT64_MAX;
+        const std::size_t n = greedy_plain_size(sampled ? sample : block, p, s, c, &segments);
         if (n < size) {
             size = n;
             guess = p;
             cut = std::move(c);
         }
+        if (segments < least_segments) {
+            least_segments = segments;
+            if (fewest) *fewest = p;
+        }
     }
     if (size == SIZE_MAX) return false;
+    if (fewest) fewest->reset();
     if (sampled) {  // (not the whole block's)
         cut.clear();
         size = 0;
@@ -508,14 +522,16 @@ bool guess_profile(const Block& block, const EncoderSettings& s, Profile& guess,
     return true;
 }
 
-bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s) {
+// `dense`: set when every profile was too dense for the segment model on
+// the guess's sample (guess_profile()'s `fewest`).
+bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s, std::optional<Profile>& dense) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || s.profile_named || first.axes != 2 || steps == 0 ||
         steps > kThoroughSampleSteps || first.chains.size() > kMaxBlockChains)
         return false;
     Profile guess = s.profile;
     Cut guess_cut;
     std::size_t plain = 0;
-    if (!guess_profile(first, s, guess, guess_cut, plain)) return false;  // random walks: ranked by their segments
+    if (!guess_profile(first, s, guess, guess_cut, plain, &dense)) return false;  // random walks
     if (plain == 0) plain = greedy_plain_size(first, guess, s, guess_cut);
     if (plain == SIZE_MAX) return false;
     auto model = std::make_shared<std::string>(write_cm_step_model(first));
@@ -690,7 +706,8 @@ int window_log_for_level(int level) {
 
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
-    if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s)) {
+    std::optional<Profile> dense;
+    if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
         // (a small first block left to the context-mixing step model)
     } else if (!s.profile_named && s.thorough) {
         // A sample of kThoroughSampleSteps ranks the profiles, as the
@@ -705,7 +722,15 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         // a third of the trial and, on 8-connected contours, leave every
         // profile in.
         std::vector<Profile> candidates;
-        if (steps <= kThoroughSampleSteps) {
+        if (steps <= kThoroughSampleSteps && dense) {
+            // Too dense for the segment model under every profile (random
+            // walks): the step model codes the block the same under each, and
+            // the trial ranked them by their segments on the whole block; now
+            // on the guess's sample (cm_small_first()), the trial made for the
+            // one with the fewest there (four fifths of the ranking's time,
+            // a fifth of -L 19's, on corpora/random/).
+            candidates.push_back(*dense);
+        } else if (steps <= kThoroughSampleSteps) {
             for (Profile p : kAllProfiles)
                 if (representable(first, p, first.axes)) candidates.push_back(p);
         } else {
