@@ -185,17 +185,26 @@ constexpr std::uint64_t kCmSampleSteps = 1u << 16;
 constexpr int kLightCmLevel = 2;
 constexpr std::size_t kLightCmGain = 32;
 
-bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best) {
+bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
+                      std::size_t sample_light) {
     const Block& block = job.block;
     if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
         job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
         return false;
     auto wins = [](std::size_t light, std::size_t other) { return light * kLightCmGain < other * (kLightCmGain - 1); };
-    if (job.steps <= kCmSampleSteps) return wins(write_light_cm_step_model(block).size() + 8, best.size());
+    // (the whole block's coding is kept for cm_pass(), which takes it when
+    // the window holds no steps)
+    auto whole_wins = [&] {
+        std::string model = write_light_cm_step_model(block);
+        if (!wins(model.size() + 8, best.size())) return false;
+        job.light_model = std::move(model);
+        return true;
+    };
+    if (job.steps <= kCmSampleSteps) return whole_wins();
     Block sample;
     Cut cut;
     spread_chains(block, job.cut.empty() ? Cut(block.chains.size()) : job.cut, kCmSampleSteps, sample, cut);
-    const std::size_t light = write_light_cm_step_model(sample).size();
+    const std::size_t light = sample_light != 0 ? sample_light : write_light_cm_step_model(sample).size();
     std::size_t other = 0;
     if (type == kSegmentModel) other = write_segment_model(sample, s.profile, cut).size();
     else if (type == kTable) other = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
@@ -204,7 +213,7 @@ bool light_cm_may_win(const BlockJob& job, const EncoderSettings& s, unsigned ty
     // A table block's matches reach across the whole block, the sample's
     // do not (the same glyphs at the same places: 0.875 on the sample, 1.01
     // on the whole block of pages-big-grbl.fc): against it the whole block.
-    return type != kTable || wins(write_light_cm_step_model(block).size() + 8, best.size());
+    return type != kTable || whole_wins();
 }
 
 // A step-model block of more than kMixSampleSteps steps is coded mixed only
@@ -553,6 +562,48 @@ bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s,
     return true;
 }
 
+// A large two-axis block at the fast levels from kFastStepLevel (where the
+// segment and step models are tried too) that the light step model codes
+// far below the other encodings is known for one before the whole block is
+// cut: its whole chains spread over it (about kCmSampleSteps steps, cut as
+// the block would be) coded by the light model must come out at least
+// 1/kLightFirstMargin smaller than the table block, the segment model and
+// the step model of the same sample. Such a block skips the cut, the other
+// encodings and the whole-block trials of light_cm_may_win() (most of the
+// first pass on large contours); the others take the full choice, which
+// reuses the light model's size on the sample. The margin (chosen on
+// glyphs-big.fc, pages-big-grbl.fc and corpora/glyphs: glyph samples come
+// out at 0.73-0.87 of the other encodings, plots at 1.02-1.45) leaves
+// the near cases to the full choice, where the whole block's table block,
+// whose matches the sample cannot see, may still win (repeated glyphs of
+// plots: hershey-pages-grbl.fc's sample is at 0.89).
+constexpr std::size_t kLightFirstMargin = 8;
+
+// `sample_light`: the light model's size on the sample, when made (the
+// later check's sample is the same).
+bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t& sample_light) {
+    if (s.thorough || s.level < kFastStepLevel || s.timed || block.axes != 2 || block.axes != s.axes ||
+        steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
+        return false;
+    Block sample;
+    sample.axes = block.axes;
+    spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    Cut cut;
+    SegmentStats stats;
+    // (the cuts go to the frame's cache: the block's own cut takes them)
+    const bool aligned = s.aligned_cut && s.segmenter != SegmenterKind::patent &&
+                         aligned_block_cut(sample, s.profile, cut, s.cut_cache);
+    if (!aligned && !segment_block(sample, s.profile, SegmenterKind::greedy, cut, stats, 0, s.source, s.cut_cache))
+        return false;
+    const std::size_t light = write_light_cm_step_model(sample).size();
+    sample_light = light;
+    // The other encodings one by one, the cheapest first: a plot fails at the first.
+    auto beats = [&](std::size_t other) { return light * kLightFirstMargin <= other * (kLightFirstMargin - 1); };
+    return light != 0 && beats(write_table_block(sample, s.profile, cut, table_effort(s.level)).size()) &&
+           beats(write_segment_model(sample, s.profile, cut).size()) &&
+           beats(write_step_model(sample, kFastStepOrder).size());
+}
+
 }  // namespace
 
 // What a profile trial made: the segmenter's cut, its statistics and, but
@@ -854,11 +905,14 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // most kCmSampleSteps, when made.
     std::size_t sample_cm = first ? s.cm_first_sample : 0;
     if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
-    if (known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm))) {
-        // A step-model block, coded by the context-mixing model in the
-        // second pass (cm_pass(); no record until then), or here when
-        // choose_frame_settings() made the model.
+    std::size_t sample_light = 0;  // the light model's size on the block's sample, when made
+    const bool cm_first = known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm));
+    if (cm_first || light_cm_first(block, job.steps, s, sample_light)) {
+        // A step-model block, coded by the context-mixing model (or the
+        // light one) in the second pass (cm_pass(); no record until then),
+        // or here when choose_frame_settings() made the model.
         job.cm = true;
+        job.cm_light = !cm_first;
         job.type = kStepModel;
         job.order = 1;
         if (s.window_log != 0) {
@@ -1009,7 +1063,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
     job.cm = cm_step_model_may_win(job, s, type, best, sample_cm);
-    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best);
+    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best, sample_light);
     job.cm = job.cm || job.cm_light;
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
         zstd_may_win(chain_payload, best, true)) {
@@ -1084,8 +1138,10 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
 // items in the window).
 void cm_pass(BlockJob& job, const WindowView& window) {
     const bool w = !window.empty() && has_symbols(window);
-    const std::string model = job.cm_light ? write_light_cm_step_model(job.block, w ? &window : nullptr)
-                                           : write_cm_step_model(job.block, w ? &window : nullptr);
+    const std::string model = job.cm_light && !w && !job.light_model.empty() ? std::move(job.light_model)
+                              : job.cm_light ? write_light_cm_step_model(job.block, w ? &window : nullptr)
+                                             : write_cm_step_model(job.block, w ? &window : nullptr);
+    job.light_model = {};
     if (job.record.empty() && (model.empty() || model.size() > kMaxBlockPayload)) {
         // (the first pass left the block to this model: the step model at
         // order 1 takes it instead)

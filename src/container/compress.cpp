@@ -21,6 +21,7 @@
 #include "../common/bytes.hpp"
 #include "encoder.hpp"
 #include "memory_io.hpp"
+#include "modeled_block.hpp"
 #include "timed_tick.hpp"
 #include "stepzip/container.hpp"
 
@@ -151,6 +152,28 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         std::unique_ptr<Block> kept;   // after the block's batch
     };
     std::vector<PendingSymbols> pending_symbols;
+    // The frame's step history (docs/FORMAT.md 1.8): the symbols of the
+    // window's blocks before the batch, made when a batch first wants them.
+    // The second pass's step coders and the proof stack their own history
+    // on it (StepHistory::stack_on()) instead of adding their whole window
+    // again: each block's symbols are added once, not once per block that
+    // sees it. Only read while the batch's jobs run.
+    StepHistoryPtr frame_steps;
+    std::vector<std::weak_ptr<WindowBlock>> unsynced;  // window blocks not in it yet, in order
+    auto sync_frame_steps = [&](const WindowView& before) {
+        if (!frame_steps) frame_steps = make_step_history();
+        for (const std::weak_ptr<WindowBlock>& u : unsynced) {
+            const std::shared_ptr<WindowBlock> b = u.lock();
+            // (a block out of the window before it was needed is never added)
+            if (!b || std::none_of(before.begin(), before.end(), [&](const auto& v) { return v.get() == b.get(); }))
+                continue;
+            b->first_symbol = step_history_end(*frame_steps);
+            step_history_add(*frame_steps, *b);
+            b->history = frame_steps.get();
+        }
+        unsynced.clear();
+        if (!before.empty()) step_history_begin_block(*frame_steps, before.front()->first_symbol, window.limit());
+    };
     std::vector<BlockJob> batch;
     std::uint64_t next_chain = 0;
     bool chain_open = false;
@@ -180,7 +203,11 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         if (symbols_wanted) {
             for (PendingSymbols& p : pending_symbols) add_steps(*p.w, *p.block);
             pending_symbols.clear();
+            sync_frame_steps(views[0]);
         }
+        for (BlockJob& j : batch)
+            if (j.contribution) unsynced.push_back(j.contribution);
+        std::erase_if(unsynced, [](const std::weak_ptr<WindowBlock>& u) { return u.expired(); });
         // Pass 2: the step model from the window (final block types).
         parallel_for(batch.size(), threads, [&](std::size_t i) {
             window_step_pass(batch[i], s, views[i]);

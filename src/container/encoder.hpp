@@ -99,6 +99,7 @@ struct BlockJob {
     /// Step-model block: whether its mixed coding is tried (1) or not (0),
     /// when the first pass decided it on its sample; -1: mixed_step_model_pays().
     int mixed_pays = -1;
+    std::string light_model;  ///< the light model's payload of the whole block without the window, when made
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
 

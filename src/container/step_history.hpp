@@ -62,6 +62,16 @@ public:
             }
         }
     }
+    // The position stored under key = base * 9 + last (0: none); nothing changes.
+    std::uint32_t find(std::uint64_t base, unsigned last) const {
+        const std::uint64_t key = base * 9 + last;
+        const std::size_t mask = size_ - 1;
+        for (std::size_t i = home(base, last, mask);; i = (i + 1) & mask) {
+            const std::uint64_t v = slots_[i];
+            if (v == 0) return 0;
+            if ((v >> kPosBits) == key) return static_cast<std::uint32_t>(v & ((1u << kPosBits) - 1));
+        }
+    }
     // Brings the line of `base`'s keys into the cache.
     void prefetch(std::uint64_t base) const {
         __builtin_prefetch(slots_ + home(base, 0, size_ - 1), 1);
@@ -120,15 +130,24 @@ constexpr std::uint64_t pow9(int k) { return k == 0 ? 1 : 9 * pow9(k - 1); }
 // no rebuild: a table position before the window's start (plus kMinMatch)
 // counts as absent, which is what the table rebuilt from the window alone
 // answers, since the table keeps the most recent position of each context.
+// The encoder's coders, which run several blocks at once, stack their own
+// history on the frame's (stack_on()): they copy its symbols, and a context
+// their own table has not seen is looked up in the frame's table (only read
+// meanwhile), as are the chain starts below `under_size`. The answers are
+// again those of the rebuilt window.
 struct StepHistory {
     std::vector<std::uint8_t> hist;
     std::uint64_t context = 0;  // last kMinMatch symbols, base 9
     MatchTable table;           // last kMinMatch symbols -> next position
     std::vector<std::uint32_t> start_pos;  // position of each chain's first symbol
     std::vector<Point> start_delta;        // and its start delta
-    std::uint64_t base = 0;                // frame position of hist[0] (decoder)
+    std::uint64_t base = 0;                // frame position of position 0 (decoder, frame history)
     std::uint32_t min_valid = 1;           // smallest table position a lookup may return
+    const StepHistory* under = nullptr;    // stack_on(): the frame's history below this one
+    std::uint32_t under_size = 0;          // its positions
 
+    // Positions so far (the next symbol's position).
+    std::size_t size() const { return hist.size(); }
     // The first kMinMatch - 1 symbols of the context the next symbol will
     // complete (base 9).
     std::uint64_t next_base() const {
@@ -143,11 +162,20 @@ struct StepHistory {
         const std::size_t n = hist.size();
         context = b * 9 + static_cast<unsigned>(sym);
         if (n < kMinMatch) return 0;
-        return table.exchange(b, static_cast<unsigned>(sym), static_cast<std::uint32_t>(n));
+        const std::uint32_t before = table.exchange(b, static_cast<unsigned>(sym), static_cast<std::uint32_t>(n));
+        return before != 0 || !under ? before : under->table.find(b, static_cast<unsigned>(sym));
     }
     void note_start(const Point& d) {
         start_pos.push_back(static_cast<std::uint32_t>(hist.size()));
         start_delta.push_back(d);
+    }
+    // The start delta recorded for a chain whose first symbol is at `pos`,
+    // or null.
+    const Point* start_at(std::uint32_t pos) const {
+        const StepHistory& h = pos >= under_size || !under ? *this : *under;
+        const auto it = std::lower_bound(h.start_pos.begin(), h.start_pos.end(), pos);
+        if (it == h.start_pos.end() || *it != pos) return nullptr;
+        return &h.start_delta[static_cast<std::size_t>(it - h.start_pos.begin())];
     }
     // Appends a block's contribution (its symbols, and its chain starts at
     // the chains' first symbols). Each symbol's table line is fetched kAhead
@@ -157,7 +185,7 @@ struct StepHistory {
         constexpr std::size_t kAhead = 16;
         // `ahead`: the base next_base() will return kAhead symbols later.
         std::uint64_t ahead = next_base();
-        std::size_t n = hist.size();
+        const std::size_t n = hist.size();
         auto roll = [&](std::size_t j) {  // symbol j of the block enters `ahead`
             const std::size_t pos = n + j;  // its position in hist
             if (pos >= kMinMatch - 1) {
@@ -179,11 +207,22 @@ struct StepHistory {
             at_start = all[i] == kEndSymbol;
         }
     }
+    // Encoder: an empty history becomes one stacked on `frame` (a frame
+    // history, only read from now on) for a block whose window starts at
+    // frame position `window_start` (a position in `frame`).
+    void stack_on(const StepHistory& frame, std::uint64_t window_start) {
+        under = &frame;
+        under_size = static_cast<std::uint32_t>(frame.hist.size());
+        hist = frame.hist;
+        base = frame.base;
+        context = frame.context;
+        min_valid = static_cast<std::uint32_t>(window_start - base) + kMinMatch;
+    }
     // Decoder, before each block: positions before `window_start` (a frame
     // position) are outside the window; a dead prefix longer than the window
     // `limit` (at most 2^22) is dropped and the table rebuilt from the window,
     // so that memory stays O(window) and positions below 2^25; the rebuild
-    // costs one more append per symbol at most.
+    // costs one more append per symbol at most. (Not on a stacked history.)
     void begin_block(std::uint64_t window_start, std::uint64_t limit) {
         const std::uint64_t max_dead = std::min<std::uint64_t>(limit, std::uint64_t{1} << 22);
         if (window_start - base > max_dead) {
@@ -243,12 +282,9 @@ Point code_step_start(Io& io, StepHistory& h, const StepMatch& m, UIntModel (&st
     bool hit = false;
     if (predict_starts && m.ptr >= 0) {
         // The match predicts a chain start when it points at one.
-        const auto& pos = h.start_pos;
-        const auto it = std::lower_bound(pos.begin(), pos.end(), static_cast<std::uint32_t>(m.ptr));
-        if (it != pos.end() && *it == static_cast<std::uint32_t>(m.ptr)) {
-            const Point& pred = h.start_delta[static_cast<std::size_t>(it - pos.begin())];
-            hit = io.bit(start_hit[step_len_bucket(m.len)], want == pred);
-            if (hit) d = pred;
+        if (const Point* pred = h.start_at(static_cast<std::uint32_t>(m.ptr))) {
+            hit = io.bit(start_hit[step_len_bucket(m.len)], want == *pred);
+            if (hit) d = *pred;
         }
     }
     if (!hit)
@@ -380,6 +416,26 @@ Result<void> decode_step_chains(Coder& coder, Io& io, StepCounts& c, bool expand
     return {};
 }
 
+// The frame history a fresh history `h` can stack on for `window`: the one
+// holding the window's first blocks as its last (each block's `history`),
+// with room for the rest of the window and a block below 2^25 positions;
+// else null (the window is added whole).
+inline const StepHistory* stack_base(const WindowView& window, const StepHistory& h) {
+    if (window.empty() || !window.front()->history || h.size() != 0 || h.under) return nullptr;
+    const StepHistory* frame = window.front()->history;
+    std::size_t k = 0;
+    while (k < window.size() && window[k]->history == frame) ++k;
+    const WindowBlock& last = *window[k - 1];
+    if (last.first_symbol + last.symbols.size() != frame->base + frame->size() || window.front()->first_symbol < frame->base)
+        return nullptr;
+    std::uint64_t more = frame->size() + kMaxBlockSteps + kMaxBlockChains;
+    for (std::size_t j = k; j < window.size(); ++j) {
+        if (window[j]->history) return nullptr;  // (not a frame history's tail)
+        more += window[j]->symbols.size();
+    }
+    return more < (std::uint64_t{1} << MatchTable::kPosBits) ? frame : nullptr;
+}
+
 // What both step coders (step_model.cpp, step_cm.cpp) offer the drivers
 // above, over the derived coder's io_, h_ (StepHistory&), m_ (StepMatch) and
 // code_symbol(io, want, at_start_point, first, counts) (CRTP).
@@ -389,9 +445,17 @@ public:
     // Starts the block from the window (docs/FORMAT.md "Window"): the
     // window's symbols enter the history and the match table in order; the
     // match and the coder's own state stay as at a block's start.
+    // The encoder's coders stack their history on the frame's where the
+    // window's first blocks are the frame history's last (compress.cpp) and
+    // add only the blocks after them; the answers are the same.
     void prime(const WindowView& window) {
         Derived& d = self();
-        for (const auto& b : window) d.h_.add(*b);
+        std::size_t k = 0;
+        if (const StepHistory* frame = stack_base(window, d.h_)) {
+            d.h_.stack_on(*frame, window.front()->first_symbol);
+            while (k < window.size() && window[k]->history == frame) ++k;
+        }
+        for (; k < window.size(); ++k) d.h_.add(*window[k]);
         d.m_ = StepMatch{};
     }
     // Codes the next symbol of a chain: a Freeman code 0..7, or kEndSymbol.

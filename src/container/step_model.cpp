@@ -47,7 +47,7 @@ void step_history_add(StepHistory& h, const WindowBlock& b) { h.add(b); }
 void step_history_begin_block(StepHistory& h, std::uint64_t window_start, std::uint64_t limit) {
     h.begin_block(window_start, limit);
 }
-std::uint64_t step_history_end(const StepHistory& h) { return h.base + h.hist.size(); }
+std::uint64_t step_history_end(const StepHistory& h) { return h.base + h.size(); }
 
 namespace {
 

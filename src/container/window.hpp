@@ -16,6 +16,8 @@
 
 namespace stepzip::stz {
 
+struct StepHistory;  // step_history.hpp
+
 /// The items a segment-model block adds: per chain its start delta (from the
 /// previous chain's end, the first from the origin) and its segments.
 struct SegmentItems {
@@ -41,7 +43,9 @@ struct WindowBlock {
     SegmentItems items;                 ///< segment-model blocks; else empty
     std::vector<std::uint8_t> symbols;  ///< two-axis chain blocks: Freeman codes, 8 after each chain
     std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
-    std::uint64_t first_symbol = 0;     ///< decoder: frame position of its first symbol
+    std::uint64_t first_symbol = 0;     ///< frame position of its first symbol (the frame history's)
+    /// Encoder: the frame history that holds its symbols (compress.cpp), or null.
+    const StepHistory* history = nullptr;
     unsigned first_type = 0;            ///< encoder: the block type its first pass chose
     /// Encoder: `items` as the table coder keys them, made by the first
     /// table block that reads this block from its window (under the frame's
