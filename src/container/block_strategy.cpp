@@ -185,8 +185,14 @@ constexpr std::uint64_t kCmSampleSteps = 1u << 16;
 constexpr int kLightCmLevel = 2;
 constexpr std::size_t kLightCmGain = 32;
 
+// What light_cm_first() coded of a block's sample (0: not made); the later
+// check takes the same sample and, for a table block without arcs, the same cut.
+struct LightSample {
+    std::size_t light = 0, table = 0, step = 0;
+};
+
 bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
-                      std::size_t sample_light) {
+                      const LightSample& made) {
     const Block& block = job.block;
     if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
         job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
@@ -204,11 +210,12 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     Block sample;
     Cut cut;
     spread_chains(block, job.cut.empty() ? Cut(block.chains.size()) : job.cut, kCmSampleSteps, sample, cut);
-    const std::size_t light = sample_light != 0 ? sample_light : write_light_cm_step_model(sample).size();
+    const std::size_t light = made.light != 0 ? made.light : write_light_cm_step_model(sample).size();
     std::size_t other = 0;
     if (type == kSegmentModel) other = write_segment_model(sample, s.profile, cut).size();
+    else if (type == kTable && made.table != 0 && !s.arc_method) other = made.table;
     else if (type == kTable) other = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
-    else other = write_step_model(sample, kFastStepOrder).size();
+    else other = made.step != 0 ? made.step : write_step_model(sample, kFastStepOrder).size();
     if (!wins(light, other)) return false;
     // A table block's matches reach across the whole block, the sample's
     // do not (the same glyphs at the same places: 0.875 on the sample, 1.01
@@ -579,9 +586,8 @@ bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s,
 // plots: hershey-pages-grbl.fc's sample is at 0.89).
 constexpr std::size_t kLightFirstMargin = 8;
 
-// `sample_light`: the light model's size on the sample, when made (the
-// later check's sample is the same).
-bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t& sample_light) {
+// `made`: what it coded of the sample (light_cm_may_win() reuses it).
+bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, LightSample& made) {
     if (s.thorough || s.level < kFastStepLevel || s.timed || block.axes != 2 || block.axes != s.axes ||
         steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
         return false;
@@ -590,18 +596,30 @@ bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettin
     spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
     Cut cut;
     SegmentStats stats;
-    // (the cuts go to the frame's cache: the block's own cut takes them)
+    // Cut as choose_block() cuts the block; the cuts go to the frame's
+    // cache, where the block's own cut finds them.
     const bool aligned = s.aligned_cut && s.segmenter != SegmenterKind::patent &&
                          aligned_block_cut(sample, s.profile, cut, s.cut_cache);
-    if (!aligned && !segment_block(sample, s.profile, SegmenterKind::greedy, cut, stats, 0, s.source, s.cut_cache))
-        return false;
-    const std::size_t light = write_light_cm_step_model(sample).size();
-    sample_light = light;
-    // The other encodings one by one, the cheapest first: a plot fails at the first.
-    auto beats = [&](std::size_t other) { return light * kLightFirstMargin <= other * (kLightFirstMargin - 1); };
-    return light != 0 && beats(write_table_block(sample, s.profile, cut, table_effort(s.level)).size()) &&
-           beats(write_segment_model(sample, s.profile, cut).size()) &&
-           beats(write_step_model(sample, kFastStepOrder).size());
+    const SegmenterKind kind =
+        s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
+    if (!aligned && !segment_block(sample, s.profile, kind, cut, stats, 0, s.source, s.cut_cache)) return false;
+    made.light = write_light_cm_step_model(sample).size();
+    // The other encodings one by one, the likelier to win first (on chains
+    // too dense for the segment model, random walks, the step model; else
+    // the table block, where plots fail): each size is reused by the later
+    // check for a block of its type. The segment model only where
+    // choose_block() tries it.
+    auto beats = [&](std::size_t other) { return made.light * kLightFirstMargin <= other * (kLightFirstMargin - 1); };
+    if (made.light == 0) return false;
+    std::uint64_t nsegs = 0;
+    for (const auto& v : cut) nsegs += v.size();
+    const bool dense = nsegs * 1000 > kStepModelOnly * step_count(sample);
+    auto step_beaten = [&] { return beats(made.step = write_step_model(sample, kFastStepOrder).size()); };
+    auto table_beaten = [&] {
+        return beats(made.table = write_table_block(sample, s.profile, cut, table_effort(s.level)).size());
+    };
+    if (dense) return step_beaten() && table_beaten();
+    return table_beaten() && step_beaten() && beats(write_segment_model(sample, s.profile, cut).size());
 }
 
 }  // namespace
@@ -905,9 +923,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // most kCmSampleSteps, when made.
     std::size_t sample_cm = first ? s.cm_first_sample : 0;
     if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
-    std::size_t sample_light = 0;  // the light model's size on the block's sample, when made
+    LightSample light_sample;      // what light_cm_first() coded of the block's sample
     const bool cm_first = known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm));
-    if (cm_first || light_cm_first(block, job.steps, s, sample_light)) {
+    if (cm_first || light_cm_first(block, job.steps, s, light_sample)) {
         // A step-model block, coded by the context-mixing model (or the
         // light one) in the second pass (cm_pass(); no record until then),
         // or here when choose_frame_settings() made the model.
@@ -1063,7 +1081,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
     job.cm = cm_step_model_may_win(job, s, type, best, sample_cm);
-    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best, sample_light);
+    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best, light_sample);
     job.cm = job.cm || job.cm_light;
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
         zstd_may_win(chain_payload, best, true)) {
