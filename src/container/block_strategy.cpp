@@ -223,9 +223,25 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     return type != kTable || whole_wins();
 }
 
+// A step-model block of more than kMixSampleSteps steps is coded mixed only
+// when its first chains (kMixSampleSteps steps, cut short, no window), or
+// the sample of the context-mixing check when the first pass made one
+// (cm_step_model_may_win()), are at least 1/kMixSampleGain smaller mixed
+// than plain at order 1: on random
+// walks mixing saves about 1 % (the block stays type 4) and the mixed
+// encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
+// (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
+constexpr std::size_t kMixSampleGain = 32;
+
+// Whether mixed_pass() codes the step-model block `job` mixed.
+bool mixed_pays(const BlockJob& job) {
+    return job.mixed_pays >= 0 ? job.mixed_pays != 0 : mixed_step_model_pays(job.block);
+}
+
 // `sample_cm`: the model's size on the sample of a block over
-// kCmSampleSteps when cm_step_model_first() made it (0: not made).
-bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
+// kCmSampleSteps when cm_step_model_first() made it, on the whole block of
+// at most kCmSampleSteps when cm_small_first() made it (0: not made).
+bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
                            std::size_t sample_cm = 0) {
     const Block& block = job.block;
     if (s.level < kStrongLevel || s.timed || block.axes != 2 || job.steps == 0 || job.steps > kMaxBlockSteps)
@@ -237,18 +253,27 @@ bool cm_step_model_may_win(const BlockJob& job, const EncoderSettings& s, unsign
         if (!whole) spread_chains(block, job.cut, kCmSampleSteps, sample, cut);
         const Block& b = whole ? block : sample;
         const Cut& c = whole ? job.cut : cut;
-        const std::size_t cm = !whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        const std::size_t cm = sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
         return cm < write_segment_model(b, s.profile, c, nullptr, false, true).size();
     }
     if (type == kStepModel) {
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
         const Block& b = whole ? block : sample;
-        return write_cm_step_model(b).size() < write_mixed_step_model(b, 1).size();
+        const std::size_t cm = whole && sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
+        const std::size_t mixed = write_mixed_step_model(b, 1).size();
+        // Whether the mixed step model pays is decided on this sample too
+        // (mixed_step_model_pays() codes another one, the block's first
+        // kMixSampleSteps steps: a fifth of -L 19's time on a random walk).
+        if (!whole) {
+            const std::size_t plain = write_step_model(b, 1).size();
+            job.mixed_pays = mixed * kMixSampleGain <= plain * (kMixSampleGain - 1);
+        }
+        return cm < mixed;
     }
     // A table block (arcs): on the whole block only. Not a raw block: the
     // window holds no steps of a block the first pass made raw
     // (compress.cpp), so it cannot become a step-model block.
-    return type == kTable && whole && write_cm_step_model(block).size() + 8 < best.size();
+    return type == kTable && whole && (sample_cm != 0 ? sample_cm : write_cm_step_model(block).size()) + 8 < best.size();
 }
 
 // A block of more than kCmSampleSteps steps that the context-mixing step
@@ -401,6 +426,8 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
+// `sample_cm`, when given: the model's size on the sample if known (not 0),
+// set to it when made.
 bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
     if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
         steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
@@ -420,9 +447,126 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     std::size_t which = 0;
     smallest_segment_model(sample, s.profile, cuts, which, false);
     const std::size_t mixed = write_segment_model(sample, s.profile, cuts[which], nullptr, false, true).size();
-    const std::size_t cm = write_cm_step_model(sample).size();
+    // (the sample is the same under every profile: its model's size, when
+    // known, is not made again)
+    const std::size_t cm = sample_cm && *sample_cm != 0 ? *sample_cm : write_cm_step_model(sample).size();
     if (sample_cm) *sample_cm = cm;
     return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
+}
+
+// A first block of at most kThoroughSampleSteps steps is the profiles'
+// ranking trial itself (every profile, the optimal segmenter, every cut,
+// the segment model of each: two thirds of -L 19's time on a 25 KB glyph
+// file). At the strong levels under --profile auto such a two-axis block
+// is first checked for the context-mixing step model on the whole block,
+// under the profile whose greedy or default-phase cut codes smallest by
+// the plain segment model (profiles too dense for the segment model left
+// out; that profile won the ranking on every corpus file the model
+// codes): it is the model's when the model codes it in at most
+// (kCmPlainGain - 1) / kCmPlainGain of that plain model's size, or else
+// in at most (kCmFirstMargin - 1) / kCmFirstMargin of its mixed coding
+// (as cm_step_model_first()). The model's payload is then the block's
+// record (no window: the first block's), and the ranking is skipped. On
+// corpora/ the model came to 0.60-0.70 of the plain segment model on
+// glyph and traced contours and 0.76 on hershey-pages-grbl.fc (0.93 of
+// the mixed one), 0.96-1.33 on the other plots (chosen on
+// corpora/glyphs/c059-8.fc, traced/icons-8.fc, plotter/hershey-pages-grbl.fc
+// and plotter/hershey-eval4.fc). Otherwise the profiles are ranked as
+// before and `cm_first_size` keeps the model's size for the block's choice.
+constexpr std::size_t kCmPlainGain = 4;
+// Steps spread over the block on which the profile is guessed.
+constexpr std::uint64_t kGuessSteps = 1u << 13;
+
+// The plain segment model of `block` under `p`, the smaller of its greedy
+// and default-phase cuts (that cut in `cut`); SIZE_MAX when `p` cannot
+// represent the block or its greedy cut is too dense for the segment model.
+std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettings& s, Cut& cut,
+                              std::uint64_t* dense_segments = nullptr) {
+    if (!representable(block, p, block.axes)) return SIZE_MAX;
+    Cut segs;
+    SegmentStats stats;
+    if (!segment_block(block, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return SIZE_MAX;
+    std::uint64_t nsegs = 0;
+    for (const auto& v : segs) nsegs += v.size();
+    if (nsegs * 1000 > kStepModelOnly * step_count(block)) {  // the step model's ground
+        if (dense_segments) *dense_segments = nsegs;
+        return SIZE_MAX;
+    }
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    greedy.profile = p;
+    std::vector<Cut> cuts = model_cuts(block, greedy, std::move(segs), false);
+    std::size_t which = 0;
+    const std::size_t n = smallest_segment_model(block, p, cuts, which, false).size();
+    cut = std::move(cuts[which]);
+    return n;
+}
+
+// The profile whose greedy or default-phase cut codes kGuessSteps spread
+// over `block` smallest by the plain segment model (greedy_plain_size());
+// false when every profile is too dense for the segment model there.
+// `cut` and `size`: that cut and size when the sample is the whole block
+// (else empty and 0). `fewest`: when every profile that can represent the
+// sample is too dense there (random walks), the one with the fewest
+// segments (the first on a tie), as the ranking orders them.
+bool guess_profile(const Block& block, const EncoderSettings& s, Profile& guess, Cut& cut, std::size_t& size,
+                   std::optional<Profile>* fewest = nullptr) {
+    const bool sampled = step_count(block) > kGuessSteps;
+    const Block sample = sampled ? sample_of(block, kGuessSteps) : Block{};
+    size = SIZE_MAX;
+    std::uint64_t least_segments = UINT64_MAX;
+    for (Profile p : kAllProfiles) {
+        Cut c;
+        std::uint64_t segments = UINT64_MAX;
+        const std::size_t n = greedy_plain_size(sampled ? sample : block, p, s, c, &segments);
+        if (n < size) {
+            size = n;
+            guess = p;
+            cut = std::move(c);
+        }
+        if (segments < least_segments) {
+            least_segments = segments;
+            if (fewest) *fewest = p;
+        }
+    }
+    if (size == SIZE_MAX) return false;
+    if (fewest) fewest->reset();
+    if (sampled) {  // (not the whole block's)
+        cut.clear();
+        size = 0;
+    }
+    return true;
+}
+
+// `dense`: set when every profile was too dense for the segment model on
+// the guess's sample (guess_profile()'s `fewest`).
+bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s, std::optional<Profile>& dense) {
+    if (s.level < kStrongLevel || s.timed || !s.thorough || s.profile_named || first.axes != 2 || steps == 0 ||
+        steps > kThoroughSampleSteps || first.chains.size() > kMaxBlockChains)
+        return false;
+    Profile guess = s.profile;
+    Cut guess_cut;
+    std::size_t plain = 0;
+    if (!guess_profile(first, s, guess, guess_cut, plain, &dense)) return false;  // random walks
+    if (plain == 0) plain = greedy_plain_size(first, guess, s, guess_cut);
+    if (plain == SIZE_MAX) return false;
+    auto model = std::make_shared<std::string>(write_cm_step_model(first));
+    const std::size_t cm = model->size();
+    bool take = cm != 0 && cm * kCmPlainGain <= plain * (kCmPlainGain - 1);
+    if (!take && cm != 0) {
+        const std::size_t mixed = write_segment_model(first, guess, guess_cut, nullptr, false, true).size();
+        take = cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
+    }
+    s.cm_first_chains = first.chains.size();
+    s.cm_first_steps = steps;
+    if (!take) {
+        s.cm_first_size = cm;
+        return false;
+    }
+    s.profile = guess;
+    s.cm_first = true;
+    s.cm_first_model = std::move(model);
+    return true;
 }
 
 // A large two-axis block at the fast levels from kFastStepLevel (where the
@@ -539,6 +683,35 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     return size;
 }
 
+// The optimal segmenter's cut is the ranking trial's costliest part (each
+// chain's segments read up to 1024 steps from every start), and on the
+// trials of corpora/ it made a profile's model at most 0.86 % smaller than
+// its greedy and default-phase cuts did (dejavu-8.fc; on the plots and the
+// 4-axis log never smaller), and it never changed which profile those cuts
+// ranked first on a 2^15-step sample or a plot's trial. So every candidate
+// is first ranked by those two cuts, and only those within
+// 1/kOptimalReach of the best there are tried with the optimal segmenter's
+// cut too (chosen on corpora/glyphs/dejavu-8.fc, plotter/hershey-eval8.fc,
+// plotter/hershey-grbl.fc and stepper/engrave-4axis.steps).
+constexpr std::size_t kOptimalReach = 100;
+
+void optimal_candidates(const Block& trial, const EncoderSettings& s, std::vector<Profile>& candidates) {
+    if (s.segmenter != SegmenterKind::optimal || candidates.size() < 2) return;
+    EncoderSettings greedy = s;
+    greedy.segmenter = SegmenterKind::greedy;
+    std::vector<std::size_t> sizes;
+    std::size_t least = SIZE_MAX;
+    for (Profile p : candidates) {
+        sizes.push_back(trial_size(trial, p, greedy));
+        least = std::min(least, sizes.back());
+    }
+    if (least == SIZE_MAX) return;
+    std::vector<Profile> kept;
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kOptimalReach) kept.push_back(candidates[i]);
+    candidates = std::move(kept);
+}
+
 // The trial of `s.profile` on this very block, if the ranking made one.
 const FirstBlockTrial* trial_of(const BlockJob& job, const EncoderSettings& s) {
     const FirstBlockTrial* t = s.first_trial.get();
@@ -573,6 +746,16 @@ std::size_t sample_size(const Block& sample, Profile p, const EncoderSettings& b
     return best;
 }
 
+// The first block's context-mixing step model made by cm_small_first()
+// as its record: what cm_pass() makes of it (the first block's window is
+// empty). A model that cannot code the block is left to cm_pass(), which
+// finds so again and gives the block to the step model.
+void take_cm_first(BlockJob& job, const std::string& model) {
+    if (model.empty() || model.size() > kMaxBlockPayload) return;
+    job.record = make_stored_record(kMixedModel, job.flags, model);
+    job.cm_coded = true;
+}
+
 }  // namespace
 
 TableEffort table_effort(int level) {
@@ -592,7 +775,10 @@ int window_log_for_level(int level) {
 
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
-    if (!s.profile_named && s.thorough) {
+    std::optional<Profile> dense;
+    if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
+        // (a small first block left to the context-mixing step model)
+    } else if (!s.profile_named && s.thorough) {
         // A sample of kThoroughSampleSteps ranks the profiles, as the
         // sample of the fast levels (the whole block when smaller).
         const std::uint64_t steps = step_count(first);
@@ -605,35 +791,57 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         // a third of the trial and, on 8-connected contours, leave every
         // profile in.
         std::vector<Profile> candidates;
-        if (steps <= kThoroughSampleSteps) {
+        if (steps <= kThoroughSampleSteps && dense) {
+            // Too dense for the segment model under every profile (random
+            // walks): the step model codes the block the same under each, and
+            // the trial ranked them by their segments on the whole block; now
+            // on the guess's sample (cm_small_first()), the trial made for the
+            // one with the fewest there (four fifths of the ranking's time,
+            // a fifth of -L 19's, on corpora/random/).
+            candidates.push_back(*dense);
+        } else if (steps <= kThoroughSampleSteps) {
             for (Profile p : kAllProfiles)
                 if (representable(first, p, first.axes)) candidates.push_back(p);
         } else {
-            const Block small = sample_of(first, kSampleSteps);
-            std::size_t sizes[std::size(kAllProfiles)];
-            std::size_t least = SIZE_MAX;
-            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
-                const Profile p = kAllProfiles[i];
-                sizes[i] = representable(first, p, first.axes) ? trial_size(small, p, s) : SIZE_MAX;
-                least = std::min(least, sizes[i]);
-            }
-            for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
-                if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
-                    candidates.push_back(kAllProfiles[i]);
             // At the strong levels, a first block that the context-mixing
-            // step model codes (cm_step_model_first(), under the best
-            // profile of the small sample) keeps that profile: the trial
+            // step model codes (cm_step_model_first(), under the profile
+            // guessed by guess_profile()) keeps that profile: the ranking
             // ranks segment models, which then code none of it (a third of
-            // -L 19's time on a 0.5 MB glyph file).
-            if (candidates.size() > 1) {
-                const std::size_t at = static_cast<std::size_t>(std::find(sizes, sizes + std::size(kAllProfiles), least) - sizes);
+            // -L 19's time on a 0.5 MB glyph file, a quarter on 0.3 MB).
+            // The block's own choice takes what the check found.
+            Profile guess = s.profile;
+            Cut unused_cut;
+            std::size_t unused_size = 0;
+            if (s.level >= kStrongLevel && !s.timed && first.axes == 2 &&
+                guess_profile(first, s, guess, unused_cut, unused_size)) {
                 EncoderSettings probe_settings = s;
-                probe_settings.profile = kAllProfiles[at];
-                if (least != SIZE_MAX && cm_step_model_first(first, steps, probe_settings)) {
-                    candidates.assign(1, kAllProfiles[at]);
-                    s.cm_first_chains = first.chains.size();
-                    s.cm_first_steps = steps;
+                probe_settings.profile = guess;
+                std::size_t sample_cm = 0;
+                s.cm_first_chains = first.chains.size();
+                s.cm_first_steps = steps;
+                if (cm_step_model_first(first, steps, probe_settings, &sample_cm)) {
+                    candidates.assign(1, guess);
+                    s.cm_first = true;
+                } else {
+                    s.cm_first_declined = guess;
+                    s.cm_first_sample = sample_cm;
                 }
+            }
+            if (candidates.empty()) {
+                // (greedy and default-phase cuts only: ranked_sizes())
+                const Block small = sample_of(first, kSampleSteps);
+                std::size_t sizes[std::size(kAllProfiles)];
+                std::size_t least = SIZE_MAX;
+                EncoderSettings greedy = s;
+                greedy.segmenter = SegmenterKind::greedy;
+                for (std::size_t i = 0; i < std::size(kAllProfiles); ++i) {
+                    const Profile p = kAllProfiles[i];
+                    sizes[i] = representable(first, p, first.axes) ? trial_size(small, p, greedy) : SIZE_MAX;
+                    least = std::min(least, sizes[i]);
+                }
+                for (std::size_t i = 0; i < std::size(kAllProfiles); ++i)
+                    if (sizes[i] != SIZE_MAX && sizes[i] - least <= least / kRankMargin + kRankSlack)
+                        candidates.push_back(kAllProfiles[i]);
             }
         }
         const bool whole = steps <= kThoroughSampleSteps;
@@ -648,7 +856,15 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
         auto kept = std::make_shared<FirstBlockTrial>();
         FirstBlockTrial made;
         std::size_t best = SIZE_MAX;
-        for (Profile p : candidates.size() > 1 || whole ? candidates : std::vector<Profile>{}) {
+        // A profile alone after the screening takes the trial too (but for a
+        // block left to the context-mixing step model): without it the
+        // optimal segmenter would recut the whole block (on
+        // plotter/hershey-patent.fc two thirds of -L 19's time, for the
+        // same bytes).
+        const bool single = candidates.size() == 1 && !s.cm_first && s.segmenter == SegmenterKind::optimal;
+        std::vector<Profile> tried = candidates.size() > 1 || whole || single ? candidates : std::vector<Profile>{};
+        optimal_candidates(trial, s, tried);
+        for (Profile p : tried) {
             const std::size_t n = trial_size(trial, p, s, &made);
             if (n < best) {
                 best = n;
@@ -698,14 +914,21 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const bool fits = block.axes == s.axes && block.chains.size() <= kMaxBlockChains;
     job.steps = 0;
     for (const Chain& c : block.chains) job.steps += c.steps.size();
-    const bool known_cm = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
-                          s.cm_first_steps == job.steps;
-    std::size_t sample_cm = 0;  // the model's size on the block's sample, when made
+    // What choose_frame_settings() found out about this block (the first).
+    const bool first = job.first_chain == 0 && s.cm_first_chains == block.chains.size() &&
+                       s.cm_first_steps == job.steps;
+    const bool known_cm = first && s.cm_first;
+    const bool declined = first && s.cm_first_declined == s.profile;
+    // The model's size on the block's sample, or on the whole block of at
+    // most kCmSampleSteps, when made.
+    std::size_t sample_cm = first ? s.cm_first_sample : 0;
+    if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
     LightSample light_sample;      // what light_cm_first() coded of the block's sample
-    const bool cm_first = known_cm || cm_step_model_first(block, job.steps, s, &sample_cm);
+    const bool cm_first = known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm));
     if (cm_first || light_cm_first(block, job.steps, s, light_sample)) {
         // A step-model block, coded by the context-mixing model (or the
-        // light one) in the second pass (cm_pass(); no record until then).
+        // light one) in the second pass (cm_pass(); no record until then),
+        // or here when choose_frame_settings() made the model.
         job.cm = true;
         job.cm_light = !cm_first;
         job.type = kStepModel;
@@ -716,6 +939,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             w->first_type = kStepModel;
             job.contribution = std::move(w);
         }
+        if (known_cm && s.cm_first_model) take_cm_first(job, *s.cm_first_model);
         return;
     }
     bool segment_model_only = false;
@@ -850,7 +1074,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             return true;
         if (mixed_size == 0) {
             const std::string m = type == kSegmentModel ? write_segment_model(block, s.profile, job.cut, nullptr, false, true)
-                                  : mixed_step_model_pays(block) ? write_mixed_step_model(block, 1)
+                                  : mixed_pays(job) ? write_mixed_step_model(block, 1)
                                                                  : std::string();
             const std::size_t size = m.empty() ? SIZE_MAX : make_stored_record(kMixedModel, job.flags, m).size();
             mixed_size = size * 64 <= best.size() * 63 ? size : SIZE_MAX;
@@ -968,6 +1192,7 @@ void cm_pass(BlockJob& job, const WindowView& window) {
 
 void window_step_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.cm) {
+        if (job.cm_coded) return;
         cm_pass(job, window);
         if (job.cm || job.error.code != Errc::ok) return;
     }
@@ -988,13 +1213,6 @@ void note_items(BlockJob& job) {
         job.contribution->items = segment_items(job.block, job.cut);
 }
 
-// A step-model block of more than kMixSampleSteps steps is coded mixed only
-// when its first chains (kMixSampleSteps steps, cut short, no window) are
-// at least 1/kMixSampleGain smaller mixed than plain at order 1: on random
-// walks mixing saves about 1 % (the block stays type 4) and the mixed
-// encoding was a third of -L 19's time; on glyph contours it saves 10-25 %
-// (chosen on corpora/random/walk-8.fc and corpora/glyphs/dejavu-8.fc).
-constexpr std::size_t kMixSampleGain = 32;
 
 bool mixed_step_model_pays(const Block& block) {
     if (step_count(block) <= 2 * kMixSampleSteps) return true;  // the sample would be most of the block
@@ -1034,7 +1252,7 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
     // The hashed models see the long contexts: a short primary order wins
     // (measured on corpora/glyphs/liberation-*.fc: order 1 < 2 < 3 < 4;
     // order 2 as well won nowhere in corpora/).
-    if (!mixed_step_model_pays(job.block)) return;
+    if (!mixed_pays(job)) return;
     keep(write_mixed_step_model(job.block, 1, w));
 }
 

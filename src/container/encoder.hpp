@@ -62,10 +62,21 @@ struct EncoderSettings {
     bool optimal_recut = true;
     /// The frame's chain cuts, shared by its jobs (null: every chain is cut).
     CutCache* cut_cache = nullptr;
-    /// The strong levels: the first block (its chains and steps) was found
-    /// to be the context-mixing step model's when the profiles were ranked
-    /// (set by choose_frame_settings(); 0 chains: not found).
+    /// The strong levels, what choose_frame_settings() found out about the
+    /// first block (its chains and steps; 0 chains: nothing): `cm_first`,
+    /// it is the context-mixing step model's; `cm_first_model`, on a first
+    /// block of at most 2^17 steps, that model's payload (no window: the
+    /// first block's), which choose_block() takes as the block's record;
+    /// `cm_first_declined`, the check for that model (cm_step_model_first())
+    /// said no under that profile, the model's size on the block's sample
+    /// being `cm_first_sample` (0: not made); `cm_first_size`, the model's
+    /// size on the whole block (0: not made).
     std::uint64_t cm_first_chains = 0, cm_first_steps = 0;
+    bool cm_first = false;
+    std::shared_ptr<const std::string> cm_first_model;
+    std::optional<Profile> cm_first_declined;
+    std::size_t cm_first_sample = 0;
+    std::size_t cm_first_size = 0;
 };
 
 /// One block in flight, from the reader to the ordered write.
@@ -84,6 +95,10 @@ struct BlockJob {
     int order = 0;                          ///< step-model block: the context order
     bool cm = false;  ///< the strong levels: coded by the context-mixing step model in the second pass
     bool cm_light = false;  ///< with cm: the light model (the fast levels)
+    bool cm_coded = false;  ///< with cm: `record` is the model's already (the frame's first block)
+    /// Step-model block: whether its mixed coding is tried (1) or not (0),
+    /// when the first pass decided it on its sample; -1: mixed_step_model_pays().
+    int mixed_pays = -1;
     std::string light_model;  ///< the light model's payload of the whole block without the window, when made
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)

@@ -760,15 +760,12 @@ std::int64_t steps_of(Profile p, const Segment& s, int axes) {
 
 }  // namespace
 
-void put_layout(std::string& out, std::string_view layout) {
-    put_varint(out, layout.size());
-    std::string z;
-    if (!layout.empty()) {
-        z.resize(ZSTD_compressBound(layout.size()));
-        const std::size_t n = ZSTD_compress(z.data(), z.size(), layout.data(), layout.size(), 19);
-        if (ZSTD_isError(n) || n >= layout.size()) z.clear();
-        else z.resize(n);
-    }
+namespace {
+// Layouts shorter than this are compressed again each time (no copy kept).
+constexpr std::size_t kLayoutMemoBytes = 256;
+
+// The layout's stored size and bytes: `z` (its zstd frame) when not empty.
+void put_stored_layout(std::string& out, std::string_view layout, const std::string& z) {
     if (z.empty()) {
         put_varint(out, layout.size());
         out += layout;
@@ -776,6 +773,36 @@ void put_layout(std::string& out, std::string_view layout) {
         put_varint(out, z.size());
         out += z;
     }
+}
+}  // namespace
+
+void put_layout(std::string& out, std::string_view layout) {
+    put_varint(out, layout.size());
+    // The encoder codes a block's layout once per model and cut it tries
+    // (the profile ranking: every profile, every cut), always the same
+    // bytes: zstd at level 19 of a large layout (a steps file's DIR bits)
+    // was most of -L 19's time. The calling thread keeps its last layout
+    // and what it came to.
+    struct Last {
+        std::string layout, z;
+    };
+    thread_local Last last;
+    if (layout.size() < kLayoutMemoBytes || layout != last.layout) {
+        std::string z;
+        if (!layout.empty()) {
+            z.resize(ZSTD_compressBound(layout.size()));
+            const std::size_t n = ZSTD_compress(z.data(), z.size(), layout.data(), layout.size(), 19);
+            if (ZSTD_isError(n) || n >= layout.size()) z.clear();
+            else z.resize(n);
+        }
+        if (layout.size() < kLayoutMemoBytes) {
+            put_stored_layout(out, layout, z);
+            return;
+        }
+        last.layout.assign(layout);
+        last.z = std::move(z);
+    }
+    put_stored_layout(out, layout, last.z);
 }
 
 void start_output(Block& out, bool expand, int axes, std::string&& layout) {
