@@ -426,15 +426,28 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
-// `sample_cm`, when given: the model's size on the sample if known (not 0),
-// set to it when made.
-bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
-    if (s.level < kStrongLevel || s.timed || !s.thorough || block.axes != 2 || block.axes != s.axes ||
-        steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
-        return false;
+// Whether a block of `steps` steps takes the early checks of a step model
+// (cm_step_model_first(), light_cm_first()): a large two-axis block that
+// the profile can represent, not timed.
+bool early_model_check_applies(const Block& block, std::uint64_t steps, const EncoderSettings& s) {
+    return !s.timed && block.axes == 2 && block.axes == s.axes && steps > kCmSampleSteps && steps <= kMaxBlockSteps &&
+           representable(block, s.profile, s.axes);
+}
+
+// Their sample: the whole chains of `block` spread over it, about
+// kCmSampleSteps steps (the sample the later checks take).
+Block whole_chains_sample(const Block& block) {
     Block sample;
     sample.axes = block.axes;
     spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    return sample;
+}
+
+// `sample_cm`, when given: the model's size on the sample if known (not 0),
+// set to it when made.
+bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, std::size_t* sample_cm = nullptr) {
+    if (s.level < kStrongLevel || !s.thorough || !early_model_check_applies(block, steps, s)) return false;
+    const Block sample = whole_chains_sample(block);
     Cut segs;
     SegmentStats stats;
     EncoderSettings greedy = s;
@@ -588,12 +601,8 @@ constexpr std::size_t kLightFirstMargin = 8;
 
 // `made`: what it coded of the sample (light_cm_may_win() reuses it).
 bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, LightSample& made) {
-    if (s.thorough || s.level < kFastStepLevel || s.timed || block.axes != 2 || block.axes != s.axes ||
-        steps <= kCmSampleSteps || steps > kMaxBlockSteps || !representable(block, s.profile, s.axes))
-        return false;
-    Block sample;
-    sample.axes = block.axes;
-    spread_stretches(block, kCmSampleSteps, [&](std::size_t i, std::uint64_t) { sample.chains.push_back(block.chains[i]); });
+    if (s.thorough || s.level < kFastStepLevel || !early_model_check_applies(block, steps, s)) return false;
+    const Block sample = whole_chains_sample(block);
     Cut cut;
     SegmentStats stats;
     // Cut as choose_block() cuts the block; the cuts go to the frame's

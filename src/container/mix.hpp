@@ -98,8 +98,8 @@ struct HashedProb {
 // Fresh zero memory of `bytes`, aligned to 64 bytes; on Linux in 2 MiB
 // pages where the kernel allows (madvise; not on every kernel): tables read
 // and written anywhere cost a page fault per page first touched and, in
-// 4 KiB pages, a TLB miss on most accesses. (step_cm.cpp's RowTable maps
-// its rows the same way.)
+// 4 KiB pages, a TLB miss on most accesses (the mixed predictor's tables,
+// step_cm.cpp's rows).
 class ZeroPages {
 public:
     explicit ZeroPages(std::size_t bytes) {

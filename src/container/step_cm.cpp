@@ -25,10 +25,6 @@
 #include <new>
 #include <type_traits>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include "mix.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
@@ -97,35 +93,13 @@ static_assert(sizeof(Row) == 32);
 // 64-byte line).
 class RowTable {
 public:
-    explicit RowTable(int bits) : mask_((std::size_t{1} << bits) - 1) {
-        const std::size_t bytes = (mask_ + 1) * sizeof(Row);
-#if defined(__linux__)
-        // Fresh zero pages, in 2 MiB pages where the kernel allows: every
-        // step touches a row of each model anywhere in the table, and 4 KiB
-        // pages cost a TLB miss on most of them.
-        if (bytes >= kHuge) {
-            size_ = bytes + kHuge;
-            void* m = mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-            if (m == MAP_FAILED) throw std::bad_alloc();
-            map_ = m;
-            const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(m) + kHuge - 1) & ~(kHuge - 1);
-            madvise(reinterpret_cast<void*>(a), bytes, MADV_HUGEPAGE);
-            rows_ = reinterpret_cast<Row*>(a);
-            return;
-        }
-#endif
-        raw_ = std::calloc(bytes + 64, 1);
-        if (!raw_) throw std::bad_alloc();
-        rows_ = reinterpret_cast<Row*>((reinterpret_cast<std::uintptr_t>(raw_) + 63) & ~std::uintptr_t{63});
-    }
+    // Fresh zero rows in 2 MiB pages where the kernel allows (ZeroPages):
+    // every step touches a row of each model anywhere in the table, and
+    // 4 KiB pages cost a TLB miss on most of them.
+    explicit RowTable(int bits)
+        : mask_((std::size_t{1} << bits) - 1), pages_((mask_ + 1) * sizeof(Row)), rows_(static_cast<Row*>(pages_.data())) {}
     RowTable(const RowTable&) = delete;
     RowTable& operator=(const RowTable&) = delete;
-    ~RowTable() {
-#if defined(__linux__)
-        if (map_) munmap(map_, size_);
-#endif
-        std::free(raw_);
-    }
 
     void prefetch(std::uint64_t h) const { __builtin_prefetch(&rows_[index(h)], 1); }
     // The row of context hash `h`: the pair's row with its check, else the
@@ -152,12 +126,9 @@ private:
         r->uses = static_cast<std::uint16_t>(r->uses + (r->uses < 65535));
         return r;
     }
-    static constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
     std::size_t mask_;
-    void* raw_ = nullptr;
-    void* map_ = nullptr;
-    std::size_t size_ = 0;
-    Row* rows_ = nullptr;
+    mixdetail::ZeroPages pages_;
+    Row* rows_;
 };
 
 // An adaptive probability map (lpaq1's APM): per row 33 points over the
