@@ -90,10 +90,12 @@ TEST(StepHistory, StackedOnTheFrameAnswersAsTheRebuiltWindow) {
         stacked.add(*blocks[5]);
         // New chains, then the symbols around the window's start again
         // (contexts that reach back past it must not be found).
-        std::vector<std::uint8_t> next = random_block(rng, 60)->symbols;
-        const std::size_t w = static_cast<std::size_t>(blocks[first]->first_symbol - frame.base);
-        next.insert(next.end(), frame.hist.begin() + static_cast<std::ptrdiff_t>(w - 11),
-                    frame.hist.begin() + static_cast<std::ptrdiff_t>(w + 30));
+        std::vector<std::uint8_t> next = random_block(rng, 60)->symbols, all;
+        for (std::size_t i = 0; i < 5; ++i) all.insert(all.end(), blocks[i]->symbols.begin(), blocks[i]->symbols.end());
+        const std::size_t w = static_cast<std::size_t>(blocks[first]->first_symbol);  // (the frame starts at 0)
+        ASSERT_TRUE(w >= 11 && w + 30 <= all.size());
+        next.insert(next.end(), all.begin() + static_cast<std::ptrdiff_t>(w - 11),
+                    all.begin() + static_cast<std::ptrdiff_t>(w + 30));
         expect_same_answers(rebuilt, stacked, next);
     }
 }
