@@ -48,6 +48,15 @@ constexpr int kFastStepLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
+std::uint64_t segment_count(const Cut& cut) {
+    std::uint64_t n = 0;
+    for (const auto& v : cut) n += v.size();
+    return n;
+}
+// Whether `segments` over `steps` are too dense for the segment model: the
+// step model's ground (random walks).
+bool too_dense(std::uint64_t segments, std::uint64_t steps) { return segments * 1000 > kStepModelOnly * steps; }
+
 // From kFastStepLevel, below the thorough levels: a block of
 // kSmallBlockSteps or more that a table block codes is also coded by the
 // segment model when its sample (kModelSampleSteps of whole chains spread
@@ -316,12 +325,7 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cu
     if (!r) return make_error(r.error().code, source + ": " + r.error().message);
     if (!optimal) return {};
     // A two-axis block too dense for the segment model is left to the step model.
-    std::uint64_t nsegs = 0, steps = 0;
-    for (std::size_t i = 0; i < segs.size(); ++i) {
-        nsegs += segs[i].size();
-        steps += block.chains[i].steps.size();
-    }
-    if (block.axes == 2 && nsegs * 1000 > kStepModelOnly * steps) return {};
+    if (block.axes == 2 && too_dense(segment_count(segs), step_count(block))) return {};
     Cut one;
     for (std::size_t i = 0; i < segs.size(); ++i) {
         if (segs[i].size() < 2 || block.chains[i].steps.size() >= kOptimalMeanSteps * segs[i].size()) continue;
@@ -453,9 +457,7 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     EncoderSettings greedy = s;
     greedy.segmenter = SegmenterKind::greedy;
     if (!segment_block(sample, s.profile, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return false;
-    std::uint64_t nsegs = 0;
-    for (const auto& v : segs) nsegs += v.size();
-    if (nsegs * 1000 > kStepModelOnly * step_count(sample)) return false;  // the step model's ground
+    if (too_dense(segment_count(segs), step_count(sample))) return false;  // the step model's ground
     std::vector<Cut> cuts = model_cuts(sample, greedy, std::move(segs), false);
     std::size_t which = 0;
     smallest_segment_model(sample, s.profile, cuts, which, false);
@@ -499,9 +501,8 @@ std::size_t greedy_plain_size(const Block& block, Profile p, const EncoderSettin
     Cut segs;
     SegmentStats stats;
     if (!segment_block(block, p, SegmenterKind::greedy, segs, stats, 0, s.source, s.cut_cache)) return SIZE_MAX;
-    std::uint64_t nsegs = 0;
-    for (const auto& v : segs) nsegs += v.size();
-    if (nsegs * 1000 > kStepModelOnly * step_count(block)) {  // the step model's ground
+    const std::uint64_t nsegs = segment_count(segs);
+    if (too_dense(nsegs, step_count(block))) {  // the step model's ground
         if (dense_segments) *dense_segments = nsegs;
         return SIZE_MAX;
     }
@@ -620,9 +621,7 @@ bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettin
     // choose_block() tries it.
     auto beats = [&](std::size_t other) { return made.light * kLightFirstMargin <= other * (kLightFirstMargin - 1); };
     if (made.light == 0) return false;
-    std::uint64_t nsegs = 0;
-    for (const auto& v : cut) nsegs += v.size();
-    const bool dense = nsegs * 1000 > kStepModelOnly * step_count(sample);
+    const bool dense = too_dense(segment_count(cut), step_count(sample));
     auto step_beaten = [&] { return beats(made.step = write_step_model(sample, kFastStepOrder).size()); };
     auto table_beaten = [&] {
         return beats(made.table = write_table_block(sample, s.profile, cut, table_effort(s.level)).size());
@@ -673,9 +672,8 @@ std::size_t trial_size(const Block& block, Profile p, const EncoderSettings& bas
     // coded by the step model, the same under every profile: such a profile
     // ranks after every other, by its count of segments (no model is made).
     if (block.axes == 2) {
-        std::uint64_t nsegs = 0;
-        for (const auto& v : segs) nsegs += v.size();
-        if (nsegs * 1000 > kStepModelOnly * step_count(block)) return SIZE_MAX / 2 + nsegs;
+        const std::uint64_t nsegs = segment_count(segs);
+        if (too_dense(nsegs, step_count(block))) return SIZE_MAX / 2 + nsegs;
     }
     std::size_t which = 0;
     bool greedy_differs = false;
@@ -971,8 +969,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 return;
             }
         }
-        std::uint64_t nsegs = 0;
-        for (const auto& v : segs) nsegs += v.size();
+        const std::uint64_t nsegs = segment_count(segs);
         if (s.thorough) chain_payload = write_chain_payload(block, s.profile, segs);
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
         if (!s.thorough && !s.timed) {
@@ -1011,7 +1008,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // (random walks): there the step model wins by 20-25 %.
         // From kFastStepLevel a large block too, where its sample says the
         // segment model may pay; kept when smaller.
-        const bool model_fits = block.axes != 2 || nsegs * 1000 <= kStepModelOnly * job.steps;
+        const bool model_fits = block.axes != 2 || !too_dense(nsegs, job.steps);
         const bool large_model = model_fits && !s.thorough && !s.timed && s.level >= kFastStepLevel &&
                                  job.steps >= kSmallBlockSteps && type == kTable &&
                                  segment_model_may_pay(block, s.profile, segs, table_effort(s.level));
@@ -1151,9 +1148,7 @@ bool wants_window_steps(const BlockJob& job, const EncoderSettings& s, const Win
     // A table block tries the step model from the window where its first
     // pass tried the step model: at kFastStepLevel and above, dense blocks.
     if (job.type == kTable) {
-        std::uint64_t nsegs = 0;
-        for (const auto& v : job.cut) nsegs += v.size();
-        if (s.level < kFastStepLevel || nsegs * 1000 < kSegmentModelOnly * job.steps) return false;
+        if (s.level < kFastStepLevel || segment_count(job.cut) * 1000 < kSegmentModelOnly * job.steps) return false;
     }
     // Below the thorough levels a segment-model block whose window holds
     // segment-model blocks only (as the first pass chose) stays one: the
@@ -1274,10 +1269,9 @@ namespace {
 void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.type == kTable) {
         if (std::none_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); })) return;
-        // The contribution holds the cut's items (note_items): their keys,
-        // from the first pass, are kept with it for the later blocks.
+        // (the contribution's keys: window_segment_pass() kept them)
         const TableItemKeys* own =
-            job.contribution ? &window_keys(*job.contribution, s.profile, job.block.axes, &job.table_keys) : nullptr;
+            job.contribution ? &window_keys(*job.contribution, s.profile, job.block.axes) : nullptr;
         unsigned record_type = kTable;
         const std::string table =
             write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window, own, nullptr, &record_type);
@@ -1305,6 +1299,10 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
 
 void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.error.code != Errc::ok) return;
+    // A table block's contribution holds its cut's items (note_items): their
+    // keys, from the first pass, are kept with it for the later blocks.
+    if (job.type == kTable && job.contribution)
+        window_keys(*job.contribution, s.profile, job.block.axes, &job.table_keys);
     if (!window.empty()) window_items_pass(job, s, window);
     mixed_pass(job, s, window);
 }

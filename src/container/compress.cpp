@@ -240,13 +240,6 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             info.compressed_bytes += j.record.size();
             if (auto r = out(j.record); !r) return r;
         }
-        // A table block's item keys from its first pass go with its
-        // contribution for the later table blocks whose window holds it (its
-        // second pass hands them over, but not when its own window held no
-        // items: the frame's first block).
-        for (BlockJob& j : batch)
-            if (j.contribution && j.type == kTable && !j.table_keys.keys.empty())
-                window_keys(*j.contribution, s.profile, j.block.axes, &j.table_keys);
         for (PendingSymbols& p : pending_symbols)
             if (!p.kept) {
                 p.kept = std::make_unique<Block>();
