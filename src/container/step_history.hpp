@@ -48,29 +48,15 @@ public:
     std::uint32_t exchange(std::uint64_t base, unsigned last, std::uint32_t pos) {
         if ((used_ + 1) * 2 > size_) grow();
         const std::uint64_t key = base * 9 + last;
-        const std::size_t mask = size_ - 1;
-        for (std::size_t i = home(base, last, mask);; i = (i + 1) & mask) {
-            const std::uint64_t v = slots_[i];
-            if (v == 0) {
-                slots_[i] = (key << kPosBits) | pos;
-                ++used_;
-                return 0;
-            }
-            if ((v >> kPosBits) == key) {
-                slots_[i] = (key << kPosBits) | pos;
-                return static_cast<std::uint32_t>(v & ((1u << kPosBits) - 1));
-            }
-        }
+        std::uint64_t& slot = slots_[probe(base, last, key)];
+        const std::uint64_t v = slot;
+        slot = (key << kPosBits) | pos;
+        used_ += v == 0;
+        return static_cast<std::uint32_t>(v & ((1u << kPosBits) - 1));
     }
     // The position stored under key = base * 9 + last (0: none); nothing changes.
     std::uint32_t find(std::uint64_t base, unsigned last) const {
-        const std::uint64_t key = base * 9 + last;
-        const std::size_t mask = size_ - 1;
-        for (std::size_t i = home(base, last, mask);; i = (i + 1) & mask) {
-            const std::uint64_t v = slots_[i];
-            if (v == 0) return 0;
-            if ((v >> kPosBits) == key) return static_cast<std::uint32_t>(v & ((1u << kPosBits) - 1));
-        }
+        return static_cast<std::uint32_t>(slots_[probe(base, last, base * 9 + last)] & ((1u << kPosBits) - 1));
     }
     // Brings the line of `base`'s keys into the cache.
     void prefetch(std::uint64_t base) const {
@@ -78,6 +64,13 @@ public:
     }
 
 private:
+    // The slot holding `key` (= base * 9 + last), else the empty one where it goes.
+    std::size_t probe(std::uint64_t base, unsigned last, std::uint64_t key) const {
+        const std::size_t mask = size_ - 1;
+        std::size_t i = home(base, last, mask);
+        while (slots_[i] != 0 && (slots_[i] >> kPosBits) != key) i = (i + 1) & mask;
+        return i;
+    }
     static std::size_t home(std::uint64_t base, unsigned last, std::size_t mask) {
         return ((static_cast<std::size_t>((base * 0x9E3779B97F4A7C15ull) >> 24) << 3) + last) & mask;
     }
