@@ -50,11 +50,14 @@ Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
     return c;
 }
 
-Block round_trip(const Block& in, bool mixed = false, bool irq = false) {
-    const std::string payload = irq ? stz::write_interrupt_block(in, mixed) : stz::write_tick_block(in, mixed);
+using stz::TickCoding;
+constexpr TickCoding kCodings[] = {TickCoding::plain, TickCoding::mixed, TickCoding::mixed_sure};
+
+Block round_trip(const Block& in, TickCoding coding = TickCoding::plain, bool irq = false) {
+    const std::string payload = irq ? stz::write_interrupt_block(in, coding) : stz::write_tick_block(in, coding);
     EXPECT_FALSE(payload.empty());
     EXPECT_EQ(static_cast<unsigned char>(payload[0]), irq ? stz::kInterruptSubtype : stz::kTickSubtype);
-    EXPECT_EQ(static_cast<unsigned char>(payload[1]), mixed ? 1u : 0u);  // the coding
+    EXPECT_EQ(static_cast<unsigned char>(payload[1]), static_cast<unsigned>(coding));
     Block out;
     stz::BlockCounts counts;
     auto r = stz::read_tick_block(payload, in.axes, true, out, counts, "test");
@@ -85,10 +88,10 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
             }
             if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
             for (const bool irq : {false, true})
-                for (const bool mixed : {false, true}) {
-                    const Block out = round_trip(b, mixed, irq);
-                    EXPECT_EQ(out.chains, b.chains)
-                        << "axes " << axes << " variant " << variant << " mixed " << mixed << " irq " << irq;
+                for (const TickCoding coding : kCodings) {
+                    const Block out = round_trip(b, coding, irq);
+                    EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " coding "
+                                                    << static_cast<unsigned>(coding) << " irq " << irq;
                     EXPECT_EQ(out.layout, b.layout);
                     EXPECT_EQ(out.axes, axes);
                 }
@@ -107,13 +110,14 @@ TEST(TickBlock, ContextsReusedAcrossBlocksCodeEveryBlockAsAFreshOne) {
         b.chains.push_back(timed_chain(rng, axes, 4000, Point{}));
         blocks.push_back(std::move(b));
     }
-    for (const bool mixed : {false, true}) {
+    for (const TickCoding coding : kCodings) {
         std::vector<std::string> first;
-        for (const Block& b : blocks) first.push_back(stz::write_tick_block(b, mixed));
+        for (const Block& b : blocks) first.push_back(stz::write_tick_block(b, coding));
         for (std::size_t round = 0; round < 2; ++round)
             for (std::size_t i = blocks.size(); i-- > 0;) {  // in the other order
-                EXPECT_EQ(stz::write_tick_block(blocks[i], mixed), first[i]) << "block " << i << " mixed " << mixed;
-                EXPECT_EQ(round_trip(blocks[i], mixed).chains, blocks[i].chains);
+                EXPECT_EQ(stz::write_tick_block(blocks[i], coding), first[i])
+                    << "block " << i << " coding " << static_cast<unsigned>(coding);
+                EXPECT_EQ(round_trip(blocks[i], coding).chains, blocks[i].chains);
             }
     }
 }
@@ -121,13 +125,11 @@ TEST(TickBlock, ContextsReusedAcrossBlocksCodeEveryBlockAsAFreshOne) {
 TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
     Block empty;
     empty.axes = 3;
-    EXPECT_TRUE(round_trip(empty).chains.empty());
-    EXPECT_TRUE(round_trip(empty, true).chains.empty());
+    for (const TickCoding coding : kCodings) EXPECT_TRUE(round_trip(empty, coding).chains.empty());
     Block idle;
     idle.axes = 3;
     idle.chains.push_back(Chain{3, Point{}, std::vector<Step>(50000, make_step2(1, 0))});
-    EXPECT_EQ(round_trip(idle).chains, idle.chains);
-    EXPECT_EQ(round_trip(idle, true).chains, idle.chains);
+    for (const TickCoding coding : kCodings) EXPECT_EQ(round_trip(idle, coding).chains, idle.chains);
 }
 
 TEST(TickBlock, StepThatDoesNotAdvanceTimeIsNotATickBlock) {
@@ -225,7 +227,24 @@ TEST(TickBlock, MixedCodingIsSmallerOnAControllerLog) {
     Block b;
     b.axes = 3;
     b.chains.push_back(timed_chain(rng, 3, 60000, Point{}));
-    EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
+    EXPECT_LT(stz::write_tick_block(b, TickCoding::mixed).size(), stz::write_tick_block(b, TickCoding::plain).size());
+}
+
+// Coding 2 (the strong levels) codes the sure decisions in their contexts
+// alone: it differs from coding 1 (on a log most ticks are sure), and stays
+// far below the plain coding and within 3 % of coding 1.
+TEST(TickBlock, SureDecisionsCodedPlainStayNearTheMixedCoding) {
+    std::mt19937 rng(11);
+    Block b;
+    b.axes = 3;
+    b.chains.push_back(timed_chain(rng, 3, 60000, Point{}));
+    const std::string plain = stz::write_tick_block(b, TickCoding::plain);
+    const std::string mixed = stz::write_tick_block(b, TickCoding::mixed);
+    const std::string sure = stz::write_tick_block(b, TickCoding::mixed_sure);
+    EXPECT_NE(sure.substr(2), mixed.substr(2));
+    EXPECT_LT(sure.size() * 100, mixed.size() * 103) << sure.size() << " vs " << mixed.size();
+    EXPECT_LT(sure.size() * 100, plain.size() * 95) << sure.size() << " vs " << plain.size();
+    EXPECT_EQ(round_trip(b, TickCoding::mixed_sure).chains, b.chains);
 }
 
 // Steps whose intervals jitter in a repeating pattern around a rate that
@@ -253,8 +272,9 @@ TEST(TickBlock, JitteredIntervalsRoundTripAndMixedCodingLearnsThem) {
         c.steps.push_back(make_step(d, 3));
     }
     b.chains.push_back(std::move(c));
-    for (const bool mixed : {false, true}) EXPECT_EQ(round_trip(b, mixed).chains, b.chains) << "mixed " << mixed;
-    EXPECT_LT(stz::write_tick_block(b, true).size(), stz::write_tick_block(b, false).size());
+    for (const TickCoding coding : kCodings)
+        EXPECT_EQ(round_trip(b, coding).chains, b.chains) << "coding " << static_cast<unsigned>(coding);
+    EXPECT_LT(stz::write_tick_block(b, TickCoding::mixed).size(), stz::write_tick_block(b, TickCoding::plain).size());
 }
 
 TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
@@ -287,7 +307,7 @@ TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
     stz::BlockCounts counts;
     for (const bool irq : {false, true}) {  // the interrupt block's header reads the same
         std::string bad = irq ? stz::write_interrupt_block(b) : payload;
-        bad[1] = 2;
+        bad[1] = 3;
         auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
         ASSERT_FALSE(coding.ok());
         EXPECT_EQ(coding.error().code, Errc::corrupt);
@@ -311,8 +331,8 @@ TEST(TickBlock, EveryPayloadByteFlipDecodesToSomethingOrIsRejected) {
     b.axes = 3;
     b.chains.push_back(timed_chain(rng, 3, 1500, Point{}));
     int rejected = 0;
-    for (const bool mixed : {false, true}) {
-        const std::string payload = stz::write_tick_block(b, mixed);
+    for (const TickCoding coding : kCodings) {
+        const std::string payload = stz::write_tick_block(b, coding);
         for (std::size_t k = 0; k < payload.size(); ++k)
             for (int bit = 0; bit < 8; bit += 3) {
                 std::string bad = payload;
@@ -416,11 +436,12 @@ Block log_block(const std::string& log) {
 TEST(InterruptBlock, SmallerThanTheTickBlockUnderStepSmoothing) {
     for (int level : {1, 2, 3}) {
         const Block b = log_block(interrupt_log(21, level));
-        for (const bool mixed : {false, true}) {
-            EXPECT_EQ(round_trip(b, mixed, true).chains, b.chains) << "level " << level;
-            const std::size_t irq = stz::write_interrupt_block(b, mixed).size();
-            const std::size_t tick = stz::write_tick_block(b, mixed).size();
-            EXPECT_LT(irq, tick) << "level " << level << " mixed " << mixed << ": " << irq << " vs " << tick;
+        for (const TickCoding coding : kCodings) {
+            EXPECT_EQ(round_trip(b, coding, true).chains, b.chains) << "level " << level;
+            const std::size_t irq = stz::write_interrupt_block(b, coding).size();
+            const std::size_t tick = stz::write_tick_block(b, coding).size();
+            EXPECT_LT(irq, tick) << "level " << level << " coding " << static_cast<unsigned>(coding) << ": " << irq
+                                 << " vs " << tick;
         }
     }
     const Block b0 = log_block(interrupt_log(21, 0));

@@ -430,6 +430,47 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
     }
 }
 
+// Timed frames: the plain codings of a block's first kTimedPrefix ticks
+// (the whole block when smaller) decide (TimedCheck) whether the
+// segment-based codings (the cuts, the segment model, the timed block) are
+// made: when the plain segment model of the greedy cut (phases aligned)
+// is smaller there than the smaller of the plain tick and interrupt
+// blocks; and, at the strong levels, which of these two is coded with
+// mixed predictions. On the eleven timed streams of docs/benchmarks.md
+// ("Timed streams at -L 19: sure decisions") the segment model came to
+// 1.16-1.70 times the tick blocks on such prefixes, and lost on every block.
+// The prefix is whole ticks in a row: a few stretches of 2^12 ticks
+// (sample_of()) hold too few steps, and the segment model, which learns
+// faster, was the smaller on most of them.
+constexpr std::uint64_t kTimedPrefix = std::uint64_t{1} << 18;
+
+TimedCheck timed_check(const Block& block, const EncoderSettings& s) {
+    TimedCheck c;
+    const Block prefix = step_count(block) > kTimedPrefix ? first_steps(block, kTimedPrefix) : Block{};
+    const Block& sample = step_count(block) > kTimedPrefix ? prefix : block;
+    const std::string tick = write_tick_block(sample), irq = write_interrupt_block(sample);
+    if (tick.empty() || irq.empty()) return c;
+    c.irq = irq.size() < tick.size();
+    if (&sample == &block) c.plain = c.irq ? irq : tick;
+    Cut segs;
+    SegmentStats stats;
+    if (!representable(sample, s.profile, sample.axes) ||
+        !segment_block(sample, s.profile, SegmenterKind::greedy, segs, stats, 0, s.source, nullptr))
+        return c;
+    for (auto& chain : segs) align_timed_phases(s.profile, sample.axes, chain);
+    c.segments = write_segment_model(sample, s.profile, segs, nullptr, true).size() < std::min(tick.size(), irq.size());
+    return c;
+}
+
+// Timed frames at the thorough levels: the first block's TimedCheck, kept
+// in `s` for the block's own choice; whether its segment-based codings may win.
+bool timed_first_check(const Block& first, EncoderSettings& s) {
+    s.timed_first = timed_check(first, s);
+    s.timed_first_chains = first.chains.size();
+    s.timed_first_steps = step_count(first);
+    return s.timed_first.segments;
+}
+
 // Whether a block of `steps` steps takes the early checks of a step model
 // (cm_step_model_first(), light_cm_first()): a large two-axis block that
 // the profile can represent, not timed.
@@ -785,6 +826,9 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     std::optional<Profile> dense;
     if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
         // (a small first block left to the context-mixing step model)
+    } else if (!s.profile_named && s.thorough && s.timed && !timed_first_check(first, s)) {
+        // (a timed frame whose first block the tick or interrupt block codes:
+        // the profiles are ranked by segment models, which code none of it)
     } else if (!s.profile_named && s.thorough) {
         // A sample of kThoroughSampleSteps ranks the profiles, as the
         // sample of the fast levels (the whole block when smaller).
@@ -951,7 +995,15 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     }
     bool segment_model_only = false;
     std::string chain_payload;  // the thorough levels: zstd of the segments, tried after the models
-    if (representable(block, s.profile, s.axes)) {
+    const bool can_represent = representable(block, s.profile, s.axes);
+    // Timed frames: what the block's first ticks say (the first block's
+    // made by choose_frame_settings() at the thorough levels).
+    const bool timed_first = s.timed_first_steps != 0 && job.first_chain == 0 &&
+                             block.chains.size() == s.timed_first_chains && job.steps == s.timed_first_steps;
+    const TimedCheck timed = !s.timed || !can_represent ? TimedCheck{}
+                             : timed_first              ? s.timed_first
+                                                        : timed_check(block, s);
+    if (can_represent && timed.segments) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
         // cut, it is the only cut made (the chains were checked by representable()).
@@ -1029,25 +1081,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             if (consider(kSegmentModel, std::move(rec))) job.cut = cuts[which];
             if (s.timed) timed_choice(job, s, cuts, type, best);
         }
-        // Timed frames at every level: the tick block (type 7 subtype 2)
-        // and the interrupt block (subtype 1), kept when smaller than the
-        // segment-based blocks; from the strong level with mixed
-        // predictions (coding 1) only, 13-23 % smaller than the plain coding
-        // on every block of the timed streams measured (docs/benchmarks.md
-        // "Timed streams at -L 19"), the plain one where the mixed one
-        // cannot code the block.
-        if (s.timed) {
-            const bool mixed = s.level >= kStrongLevel;
-            for (const bool irq : {false, true}) {
-                auto write = [&](bool m) { return irq ? write_interrupt_block(block, m) : write_tick_block(block, m); };
-                std::string tick = write(mixed);
-                if (mixed && (tick.empty() || tick.size() > kMaxBlockPayload)) tick = write(false);
-                if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
-                    consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
-                    job.cut.clear();
-            }
-        }
-    } else if (s.profile_named && block.axes == s.axes) {
+    } else if (!can_represent && s.profile_named && block.axes == s.axes) {
         for (std::size_t c = 0; c < block.chains.size(); ++c) {
             auto r = profile_accepts(s.profile, block.chains[c].steps, block.axes);
             if (!r) {
@@ -1057,6 +1091,25 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
                 return;
             }
         }
+    }
+    // Timed frames at every level: the tick block (type 7 subtype 2) or
+    // the interrupt block (subtype 1), the one the check found smaller,
+    // kept when smaller than the segment-based blocks; from the strong
+    // level with mixed predictions but for the sure decisions (coding 2),
+    // 13-23 % smaller than the plain coding on every block of the timed
+    // streams measured (docs/benchmarks.md "Timed streams at -L 19"), the
+    // plain one where the mixed one cannot code the block.
+    if (s.timed && can_represent) {
+        const TickCoding coding = s.level >= kStrongLevel ? TickCoding::mixed_sure : TickCoding::plain;
+        auto write = [&](TickCoding c) {
+            return timed.irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
+        };
+        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding);
+        if (coding != TickCoding::plain && (tick.empty() || tick.size() > kMaxBlockPayload))
+            tick = write(TickCoding::plain);
+        if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
+            consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
+            job.cut.clear();
     }
     // The step model decodes a few times slower than a table block: below
     // kFastStepLevel only small blocks try it.

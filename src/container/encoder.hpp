@@ -41,6 +41,16 @@ struct FirstBlockTrial;
 
 class CutCache;
 
+/// Timed frames: what the plain codings of a block's first ticks say
+/// (timed_check() in block_strategy.cpp): whether the segment-based codings
+/// may win against the tick and interrupt blocks, and which of those two
+/// is the smaller.
+struct TimedCheck {
+    bool segments = true;
+    bool irq = false;
+    std::string plain;  ///< the smaller plain payload, when the check coded the whole block
+};
+
 /// What the frame writer fixed for every block of a frame.
 struct EncoderSettings {
     Profile profile = Profile::eval8;
@@ -77,6 +87,10 @@ struct EncoderSettings {
     std::optional<Profile> cm_first_declined;
     std::size_t cm_first_sample = 0;
     std::size_t cm_first_size = 0;
+    /// Timed frames at the thorough levels: the first block's TimedCheck,
+    /// made by choose_frame_settings() (`timed_first_steps` 0: not made).
+    std::uint64_t timed_first_chains = 0, timed_first_steps = 0;
+    TimedCheck timed_first;
 };
 
 /// One block in flight, from the reader to the ordered write.

@@ -330,6 +330,16 @@ private:
     int field_ = 0;
 };
 
+/// Sure decisions (the tick block's coding 2, docs/FORMAT.md 1.13): with
+/// `sure` > 0, a decision whose primary context gives its less likely bit
+/// a probability of at most sure / 65536 is coded in that context alone,
+/// as in a type 3 block, and nothing of the mixer sees it. On a controller's
+/// log most ticks are such decisions (an axis that cannot step yet), and
+/// mixing them costs most of the coding's time.
+[[gnu::always_inline]] inline bool mix_sure(const Prob& p, std::uint32_t sure) noexcept {
+    return p.p <= sure || p.p >= 65536u - sure;
+}
+
 /// Range encoder driven by a MixPredictor (the predictor outlives it).
 struct MixEncIo {
     static constexpr bool kDecode = false;
@@ -338,8 +348,13 @@ struct MixEncIo {
     bool failed = false;
     MixPredictor* m = nullptr;
     bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
+    std::uint32_t sure = 0;  // see mix_sure()
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int b) {
+        if (mix_sure(p, sure)) {
+            rc.encode(p, b);
+            return b;
+        }
         rc.encode_p(65536u - m->predict(p), b);
         m->update(p, b);
         return b;
@@ -355,8 +370,10 @@ struct MixDecIo {
     bool failed = false;
     MixPredictor* m = nullptr;
     bool curvature = false;  // the coder adds the curvature models (FORMAT.md 1.11.1)
+    std::uint32_t sure = 0;  // see mix_sure()
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int) {
+        if (mix_sure(p, sure)) return rc.decode(p);
         const int b = rc.decode_p(65536u - m->predict(p));
         m->update(p, b);
         return b;

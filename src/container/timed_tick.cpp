@@ -24,9 +24,13 @@ namespace {
 
 namespace dss = stepzip::detail::dss;
 
-/// The codings of a tick block (payload byte 1): adaptive contexts, or
-/// mixed predictions (FORMAT.md 1.11's mixer).
-constexpr unsigned kTickPlain = 0, kTickMixed = 1;
+/// Coding 2: a decision is sure when its context gives the less likely bit
+/// at most kSure / 65536 (mix_sure()): the least probability a context
+/// reaches after a long run of the same bit (its shift capped at 5), i.e.
+/// an axis that has not stepped in such a state for hundreds of ticks.
+/// Chosen on corpora/timed/trapezoid-2axis, trapezoid-3axis and the Grbl
+/// stream (docs/benchmarks.md "Timed streams at -L 19: sure decisions").
+constexpr std::uint32_t kSure = 32;
 /// A segment followed is cut back to its longest suffix of at most
 /// kRebuild letters that is straight when it breaks, and when it reaches
 /// kMaxLine letters (the hull arithmetic stays far inside 64 bits).
@@ -525,7 +529,7 @@ void write_ticks(Io& io, TickTables& t, const Block& block, bool windows) {
     }
 }
 
-std::string write_ticks_payload(const Block& block, bool mixed, unsigned subtype) {
+std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned subtype) {
     const int axes = block.axes;
     if (axes < 2 || axes > kMaxAxes) return {};
     std::uint64_t nsteps = 0;
@@ -536,15 +540,16 @@ std::string write_ticks_payload(const Block& block, bool mixed, unsigned subtype
     }
     std::string out;
     put_u8(out, subtype);
-    put_u8(out, mixed ? kTickMixed : kTickPlain);
+    put_u8(out, static_cast<unsigned>(coding));
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
     const TickTablesLease tables(axes - 1);
-    if (mixed) {
+    if (coding != TickCoding::plain) {
         MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
+        io.sure = coding == TickCoding::mixed_sure ? kSure : 0;
         write_ticks(io, *tables, block, subtype == kInterruptSubtype);
         out += io.rc.finish();
     } else {
@@ -557,10 +562,12 @@ std::string write_ticks_payload(const Block& block, bool mixed, unsigned subtype
 
 }  // namespace
 
-std::string write_tick_block(const Block& block, bool mixed) { return write_ticks_payload(block, mixed, kTickSubtype); }
+std::string write_tick_block(const Block& block, TickCoding coding) {
+    return write_ticks_payload(block, coding, kTickSubtype);
+}
 
-std::string write_interrupt_block(const Block& block, bool mixed) {
-    return write_ticks_payload(block, mixed, kInterruptSubtype);
+std::string write_interrupt_block(const Block& block, TickCoding coding) {
+    return write_ticks_payload(block, coding, kInterruptSubtype);
 }
 
 namespace {
@@ -573,7 +580,8 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
     const bool windows = subtype == kInterruptSubtype;
-    if (!cur.u8(coding) || coding != (kMixedIo<Io> ? kTickMixed : kTickPlain))
+    const auto is = [&](TickCoding c) { return coding == static_cast<unsigned>(c); };
+    if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));
     std::uint64_t nchains, nsteps;
@@ -591,6 +599,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));
     }();
+    if constexpr (kMixedIo<Io>) io.sure = is(TickCoding::mixed_sure) ? kSure : 0;
     TickTables& t = *tables;
     TickCoder<Io> coder(io, t, axes, windows);
     start_output(out, expand, axes, std::move(*layout));
@@ -639,7 +648,8 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
                              const std::string& where) {
     // The coding byte picks the coder (an unknown one is reported by the plain reader).
-    if (payload.size() >= 2 && static_cast<unsigned char>(payload[1]) == kTickMixed)
+    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) : 0;
+    if (coding == static_cast<unsigned>(TickCoding::mixed) || coding == static_cast<unsigned>(TickCoding::mixed_sure))
         return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
     return read_ticks<DecIo>(payload, axes, expand, out, counts, where);
 }

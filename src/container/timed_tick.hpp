@@ -24,15 +24,20 @@ inline constexpr unsigned kInterruptSubtype = 1;
 /// block type 7): not a block type of the format.
 inline constexpr unsigned kTickBlock = 8;
 
+/// The codings of a tick or interrupt block (payload byte 1): every bit in
+/// its adaptive context; every bit with mixed predictions; with mixed
+/// predictions but for the bits whose context is sure (mix_sure(), the
+/// strong levels' choice).
+enum class TickCoding : unsigned { plain = 0, mixed = 1, mixed_sure = 2 };
+
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `mixed`: coded with mixed predictions (coding 1; the strong levels).
-std::string write_tick_block(const Block& block, bool mixed = false);
+std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md
 /// 1.14); empty when it cannot be one (as write_tick_block).
-std::string write_interrupt_block(const Block& block, bool mixed = false);
+std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain);
 
 /// Parses a tick-block or interrupt-block payload into `out` (when `expand`) and adds its
 /// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit

@@ -297,8 +297,8 @@ def first_extended_block(name, subtype, second):
 # tests/golden/v2/tick.steps.stz: its first block is a tick block.
 tick, k_payload = first_extended_block('tick.steps.stz', 2, 0)
 files.update({
-    # A coding that is neither 0 (plain) nor 1 (mixed predictions).
-    'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 2))),
+    # A coding that is none of 0 (plain), 1 (mixed predictions) and 2 (mixed but the sure bits).
+    'v2_tick_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 3))),
     # Subtype 9 names no block (0 timed, 1 interrupt, 2 tick, 4 table).
     'v2_tick_unknown_subtype': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(tick, k_payload, 9))),
 })
