@@ -775,7 +775,9 @@ TableEffort table_effort(int level) {
 int window_log_for_level(int level) {
     // In steps + chains (about bytes of Freeman text); zstd's and xz's level
     // tables are the anchors: a few MiB at the fast levels, 8 MiB at the top.
-    if (level <= 2) return 21;
+    // A block is in the window whole or not at all, so the window holds
+    // three blocks of the default 2^20 steps (with their chains) from level
+    // 1 on: 2^21 held one, and a repeat farther than a block was missed.
     if (level < kThoroughLevel) return 22;
     return kMaxWindowLog;
 }
