@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../src/container/cut_cache.hpp"
+#include "../src/segment/accepted_cut.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segment/block_cut.hpp"
 
@@ -117,4 +118,35 @@ TEST(CutCache, ErrorsAsCutBlock) {
     ASSERT_FALSE(rb.ok());
     EXPECT_EQ(ra.error().code, rb.error().code);
     EXPECT_EQ(ra.error().message, rb.error().message);
+}
+
+// The frame's block strategy checks a block's steps once (representable())
+// and then cuts it without checking again: the cuts of checked chains, by
+// every kind, are those of cut_block(), through the cache too.
+TEST(CutCache, CutsOfCheckedChainsEqualCutBlock) {
+    struct Case {
+        const char* name;
+        Profile p;
+    };
+    for (const Case& t : {Case{"glyphs/dejavu-8.fc", Profile::eval8}, Case{"plotter/hershey-grbl.fc", Profile::grbl},
+                          Case{"glyphs/dejavu-4.fc", Profile::eval4}, Case{"glyphs/dejavu-4.fc", Profile::patent}}) {
+        std::vector<Chain> chains = corpus_chains(t.name);
+        if (chains.size() > 200) chains.resize(200);
+        ASSERT_FALSE(chains.empty());
+        for (const Chain& c : chains) ASSERT_TRUE(profile_accepts(t.p, c.steps, 2).ok());
+        for (const BlockCut kind : {BlockCut::greedy, BlockCut::optimal, BlockCut::patent, BlockCut::default_phase}) {
+            if ((kind == BlockCut::patent) != (t.p == Profile::patent)) continue;
+            SCOPED_TRACE(std::string(t.name) + " " + std::string(profile_name(t.p)) + " kind " +
+                         std::to_string(static_cast<int>(kind)));
+            std::vector<std::vector<Segment>> checked, accepted, cached;
+            SegmentStats s1, s2;
+            ASSERT_TRUE(cut_block(chains, 2, t.p, kind, checked, &s1).ok());
+            ASSERT_TRUE(cut_accepted_block(chains, 2, t.p, kind, accepted, &s2).ok());
+            EXPECT_EQ(accepted, checked);
+            EXPECT_EQ(s2.patent_segments, s1.patent_segments);
+            CutCache cache(std::size_t{64} << 20);
+            ASSERT_TRUE(stz::cut_block_cached(chains, 2, t.p, kind, cached, &cache, nullptr, 0, true).ok());
+            EXPECT_EQ(cached, checked);
+        }
+    }
 }

@@ -80,6 +80,24 @@ TEST(ContainerWindow, RepeatsFartherThanABlockAreFoundInsideTheWindow) {
     EXPECT_EQ(info->format_version, 2);
 }
 
+// A window takes earlier blocks whole (docs/FORMAT.md 1.8), so the window a
+// level declares must hold several blocks of the default size for a repeat
+// farther than one block to be found: at least three, each with a chain per
+// 8 steps, from level 1 on (2^21 at levels 1-2 held one).
+TEST(ContainerWindow, EveryLevelsWindowHoldsThreeDefaultBlocks) {
+    const std::string input = chains_text(3, 20);
+    const std::uint64_t block_weight = kDefaultBlockSteps + kDefaultBlockSteps / 8;
+    for (int level : {1, 2, 3, 9, 10, 19}) {
+        CompressOptions opt;
+        opt.level = level;
+        const std::string z = must_compress(input, opt);
+        auto info = inspect_stream(stz::memory_reader(z));
+        ASSERT_TRUE(info.ok()) << info.error().message;
+        EXPECT_GE(info->window, 3 * block_weight) << "level " << level;
+        EXPECT_LE(info->window, std::uint64_t{1} << kMaxWindowLog) << "level " << level;
+    }
+}
+
 TEST(ContainerWindow, NothingIsFoundPastTheDeclaredWindow) {
     const std::string input = far_repeat();
     const std::string none = must_compress(input, window_options(0));

@@ -4,6 +4,7 @@
 // a modeled block again from the window.
 #include <algorithm>
 
+#include "../segment/accepted_cut.hpp"
 #include "arc_items.hpp"
 #include "cut_cache.hpp"
 #include "encoder.hpp"
@@ -309,7 +310,9 @@ bool segment_model_may_pay(const Block& block, Profile p, const Cut& cut, const 
 }
 
 // Segments every chain of `block` under `p` (cut_block()); errors name the
-// source, the chain and the step. The optimal segmenter reads up to
+// source and the chain. Precondition: representable(block, p, block.axes),
+// whose check of the steps is not made again (every caller has made it, on
+// the block or on a block whose chains these are). The optimal segmenter reads up to
 // kOptimalWindow steps from every start, which on long segments (plots)
 // costs 15 times the rest of -L 19: it recuts only the chains whose greedy
 // segments average under kOptimalMeanSteps steps; the others keep the
@@ -321,7 +324,7 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cu
                            std::uint64_t first_chain, const std::string& source, CutCache* cache) {
     const bool optimal = kind == SegmenterKind::optimal;
     auto r = cut_block_cached(block.chains, block.axes, p, optimal ? BlockCut::greedy : block_cut_of(kind), segs,
-                              cache, &stats, first_chain);
+                              cache, &stats, first_chain, true);
     if (!r) return make_error(r.error().code, source + ": " + r.error().message);
     if (!optimal) return {};
     // A two-axis block too dense for the segment model is left to the step model.
@@ -329,8 +332,8 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cu
     Cut one;
     for (std::size_t i = 0; i < segs.size(); ++i) {
         if (segs[i].size() < 2 || block.chains[i].steps.size() >= kOptimalMeanSteps * segs[i].size()) continue;
-        r = cut_block(std::span<const Chain>(&block.chains[i], 1), block.axes, p, BlockCut::optimal, one, nullptr,
-                      first_chain + i);
+        r = cut_accepted_block(std::span<const Chain>(&block.chains[i], 1), block.axes, p, BlockCut::optimal, one,
+                               nullptr, first_chain + i);
         if (!r) return make_error(r.error().code, source + ": " + r.error().message);
         segs[i] = std::move(one[0]);
     }
@@ -338,8 +341,9 @@ Result<void> segment_block(const Block& block, Profile p, SegmenterKind kind, Cu
 }
 
 // The default-phase cut of every chain; false when a chain has none.
+// Precondition: as segment_block()'s.
 bool aligned_block_cut(const Block& block, Profile p, Cut& out, CutCache* cache) {
-    return cut_block_cached(block.chains, block.axes, p, BlockCut::default_phase, out, cache).ok();
+    return cut_block_cached(block.chains, block.axes, p, BlockCut::default_phase, out, cache, nullptr, 0, true).ok();
 }
 
 bool representable(const Block& block, Profile p, int axes) {
@@ -816,7 +820,9 @@ TableEffort table_effort(int level) {
 int window_log_for_level(int level) {
     // In steps + chains (about bytes of Freeman text); zstd's and xz's level
     // tables are the anchors: a few MiB at the fast levels, 8 MiB at the top.
-    if (level <= 2) return 21;
+    // A block is in the window whole or not at all, so the window holds
+    // three blocks of the default 2^20 steps (with their chains) from level
+    // 1 on: 2^21 held one, and a repeat farther than a block was missed.
     if (level < kThoroughLevel) return 22;
     return kMaxWindowLog;
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <xxhash.h>
 
+#include "../segment/accepted_cut.hpp"
+
 namespace stepzip::stz {
 
 std::uint32_t CutCache::key_of(BlockCut kind, Profile p, int axes) noexcept {
@@ -76,9 +78,10 @@ std::size_t CutCache::size() const {
 
 Result<void> cut_block_cached(std::span<const Chain> chains, int axes, Profile p, BlockCut kind,
                               std::vector<std::vector<Segment>>& out, CutCache* cache, SegmentStats* stats,
-                              std::uint64_t first_chain) {
+                              std::uint64_t first_chain, bool accepted) {
+    auto cut = accepted ? cut_accepted_block : cut_block;
     if (!cache || (kind != BlockCut::greedy && kind != BlockCut::default_phase))
-        return cut_block(chains, axes, p, kind, out, stats, first_chain);
+        return cut(chains, axes, p, kind, out, stats, first_chain);
     out.assign(chains.size(), {});
     std::vector<std::vector<Segment>> one;
     // Chain by chain, so that a chain repeated within the block finds the
@@ -88,7 +91,7 @@ Result<void> cut_block_cached(std::span<const Chain> chains, int axes, Profile p
         const bool cached = steps.size() >= kCutCacheMinSteps;
         const std::uint64_t h = cached ? CutCache::hash(steps, kind, p, axes) : 0;
         if (cached && cache->find(h, steps, kind, p, axes, out[c])) continue;
-        if (auto r = cut_block(chains.subspan(c, 1), axes, p, kind, one, stats, first_chain + c); !r) return r;
+        if (auto r = cut(chains.subspan(c, 1), axes, p, kind, one, stats, first_chain + c); !r) return r;
         out[c] = std::move(one[0]);
         if (cached) cache->insert(h, steps, kind, p, axes, out[c]);
     }

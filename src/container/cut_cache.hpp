@@ -68,10 +68,12 @@ private:
 /// default_phase, taking from `cache` the cut of a chain of at least
 /// kCutCacheMinSteps steps cut before and keeping the new ones there; the
 /// other kinds, or a null cache: cut_block() itself. Same results and
-/// errors as cut_block(). Thread-safe (the cache locks).
+/// errors as cut_block(). `accepted`: the caller has checked every chain
+/// with profile_accepts(p, steps, axes), which is not done again
+/// (cut_accepted_block()). Thread-safe (the cache locks).
 Result<void> cut_block_cached(std::span<const Chain> chains, int axes, Profile p, BlockCut kind,
                               std::vector<std::vector<Segment>>& out, CutCache* cache,
-                              SegmentStats* stats = nullptr, std::uint64_t first_chain = 0);
+                              SegmentStats* stats = nullptr, std::uint64_t first_chain = 0, bool accepted = false);
 
 /// Shorter chains are cut again (a look-up costs about what their cut costs).
 inline constexpr std::size_t kCutCacheMinSteps = 32;

@@ -1239,8 +1239,13 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     }
     if (items) {
         *items = SegmentItems{};
-        // As declared, within what the payload's size can plausibly hold.
-        items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, 8 * payload.size())));
+        // As declared, within what the payload's size can plausibly hold
+        // plus what its matches may copy from the window (whose segments the
+        // decoder holds already): a block that repeats its window is a few
+        // bytes, and growing the array by doubling took twice its size at
+        // the peak (rep.fc at -L 1: 100 of the decoder's 145 MB).
+        const std::uint64_t plausible_segs = 8 * payload.size() + coder.segs_.size();
+        items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible_segs)));
     }
     // Items the block may add after the window's.
     const std::uint64_t max_items = coder.hist_.size() + h.nsegments + 2 * h.nchains;

@@ -132,14 +132,14 @@ private:
     int sign_[2];
 };
 
-bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& out) {
+bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& out, bool accepted) {
     // The longest exact segment at each point: TwoAxisGreedy (the greedy
     // cut's recognizer, several times faster on short segments) where every
     // step is valid for the profile, its precondition; else RunSegment,
     // which answers 0 at an invalid step. Same answers (two_axis.hpp).
     std::optional<detail::TwoAxisGreedy> two;
     std::optional<detail::RunSegment> rec;
-    if (profile_accepts(p, steps, 2)) two.emplace(p);
+    if (accepted || profile_accepts(p, steps, 2)) two.emplace(p);
     else rec.emplace(p, 2);
     TwoAxisWindow win(p);
     std::size_t i = 0;
@@ -161,9 +161,9 @@ bool cut_two_axes(std::span<const Step> steps, Profile p, std::vector<Segment>& 
 }  // namespace
 
 bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
-                            std::vector<Segment>& out) {
+                            std::vector<Segment>& out, bool accepted) {
     if (p == Profile::patent) return false;
-    if (axes == 2) return cut_two_axes(steps, p, out);
+    if (axes == 2) return cut_two_axes(steps, p, out, accepted);
     return cut_preferring_default_reference(steps, axes, p, out);
 }
 

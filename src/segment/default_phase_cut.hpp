@@ -16,9 +16,10 @@ namespace stepzip {
 /// longest segment drawn at the profile's default phase that is at least half
 /// as long as the longest exact segment there, else the longest exact one.
 /// Returns false (and leaves `out` partial) for the patent profile or when a
-/// run cannot be fitted. Thread-safe.
+/// run cannot be fitted. `accepted`: the caller has checked the steps with
+/// profile_accepts(p, steps, axes), which is then not done again. Thread-safe.
 bool cut_preferring_default(std::span<const Step> steps, int axes, Profile p,
-                            std::vector<Segment>& out);
+                            std::vector<Segment>& out, bool accepted = false);
 
 /// The same cut read step by step, with every candidate pattern expanded
 /// (the reference the fast two-axis path is tested against; used for more

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "accepted_cut.hpp"
 #include "stepzip/segment/segmenters.hpp"
 
 namespace stepzip {
@@ -77,6 +78,11 @@ Result<void> profile_accepts(Profile p, std::span<const Step> steps, int axes) {
 Result<void> segment_steps(std::span<const Step> steps, int axes, Profile p, SegmenterKind kind,
                            std::vector<Segment>& out, SegmentStats* stats) {
     if (auto r = profile_accepts(p, steps, axes); !r) return r;
+    return segment_accepted_steps(steps, axes, p, kind, out, stats);
+}
+
+Result<void> segment_accepted_steps(std::span<const Step> steps, int axes, Profile p, SegmenterKind kind,
+                                    std::vector<Segment>& out, SegmentStats* stats) {
     switch (kind) {
         case SegmenterKind::greedy: GreedySegmenter(p, axes).run(steps, out); return {};
         case SegmenterKind::optimal: OptimalSegmenter(p, axes).run(steps, out); return {};
