@@ -130,6 +130,12 @@ public:
 
     /// The last 64 letters, the latest in bit 0 (mixed coding).
     std::uint64_t recent() const { return recent_; }
+    /// The letters since the line last broke and the letters between its
+    /// last two breaks, each capped at 1023 (mixed coding 2).
+    std::uint64_t breaks() const {
+        return (static_cast<std::uint64_t>(std::min<std::int64_t>(since_break_, 1023)) << 10) |
+               static_cast<std::uint64_t>(std::min<std::int64_t>(period_, 1023));
+    }
     /// The current run (its letter, 0 before any, and length) and the last
     /// complete run of its letter (mixed coding).
     std::uint64_t run_key() const {
@@ -331,9 +337,10 @@ template <class Io>
 class TickCoder {
 public:
     /// `windows`: an interrupt block (subtype 1), whose B[a] follow the
-    /// axes per leader step (FORMAT.md 1.14).
-    TickCoder(Io& io, TickTables& t, int axes, bool windows = false)
-        : io_(io), t_(t), minor_(axes - 1), windows_(windows) {}
+    /// axes per leader step (FORMAT.md 1.14); `coding`: which hashed
+    /// models the mixed codings name (v0 and v4 differ in coding 2).
+    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding)
+        : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure) {}
 
     /// A chain's start: every follower forgets.
     void start_chain() {
@@ -387,11 +394,24 @@ public:
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
                 io_.field(i == 0 ? 0 : 1);
-                mix_context(io_, 0, ctx_join(ctx_join(ax, 1), f.recent() & 0xFFFFu));
+                if (sure_) {
+                    // Coding 2: the time since the leader's last step and its last
+                    // interval (for the leader: of the axis ranked next), with
+                    // the time since this axis's last step.
+                    const auto ub = static_cast<std::size_t>(i > 0 ? leader_ : minor_ > 1 ? order[1] : a);
+                    mix_context(io_, 0, ctx_join(ctx_join(ax, 1), (capped(since_[ub]) << 20) | (capped(gap_[ub]) << 10) |
+                                                                      capped(since_[ua])));
+                } else {
+                    mix_context(io_, 0, ctx_join(ctx_join(ax, 1), f.recent() & 0xFFFFu));
+                }
                 mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
                 mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
                 mix_context(io_, 3, ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
-                mix_context(io_, 4, ctx_join(ctx_join(ax, 5), (static_cast<std::uint64_t>(fa) << 2) | static_cast<std::uint64_t>(ba)));
+                // Coding 2: where the axis's line broke, in place of its admitted set
+                // and b (which the primary context holds).
+                mix_context(io_, 4, ctx_join(ctx_join(ax, 5), sure_ ? (f.breaks() << 2) | static_cast<std::uint64_t>(fa)
+                                                                    : (static_cast<std::uint64_t>(fa) << 2) |
+                                                                          static_cast<std::uint64_t>(ba)));
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
                 const auto& g = gaps_[ua];
                 mix_context(io_, 6, ctx_join(ctx_join(ax, 7), (static_cast<std::uint64_t>(trend(since_[ua] + 1, g)) << 4) | static_cast<std::uint64_t>(fa)));
@@ -487,6 +507,7 @@ private:
     TickTables& t_;
     int minor_;
     bool windows_;
+    bool sure_;  // coding 2
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -504,9 +525,9 @@ namespace {
 
 // The chains of `block` (every step advancing time) coded through `io`.
 template <class Io>
-void write_ticks(Io& io, TickTables& t, const Block& block, bool windows) {
+void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding) {
     const int axes = block.axes;
-    TickCoder<Io> coder(io, t, axes, windows);
+    TickCoder<Io> coder(io, t, axes, windows, coding);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -550,11 +571,11 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
         MixEncIo io;
         io.m = &pred;
         io.sure = coding == TickCoding::mixed_sure ? kSure : 0;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding);
         out += io.rc.finish();
     } else {
         EncIo io;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding);
         out += io.rc.finish();
     }
     return out;
@@ -601,7 +622,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     }();
     if constexpr (kMixedIo<Io>) io.sure = is(TickCoding::mixed_sure) ? kSure : 0;
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes, windows);
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding));
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
