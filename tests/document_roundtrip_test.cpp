@@ -734,11 +734,12 @@ TEST(BlockWriter, RefusesLayoutsThatDoNotFit) {
 }
 
 TEST(BlockWriter, FreemanRefusesAStepWithoutACodeAnywhereInAChain) {
-    // The renderer writes four steps a round and checks the codes after the
-    // loop: a bad step at any place of a round or of the tail is refused.
+    // The renderer writes sixteen steps a round (with SSSE3), then four a
+    // round, and checks the codes after each loop: a bad step at any place of
+    // either round or of the tail is refused.
     std::mt19937 rng(17);
     BlockWriter w(InputFormat::freeman);
-    for (std::size_t n = 1; n <= 13; ++n) {
+    for (std::size_t n = 1; n <= 40; ++n) {
         std::string codes;
         for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));
         const std::string text = "4 -1 " + codes + "\n";
@@ -748,7 +749,8 @@ TEST(BlockWriter, FreemanRefusesAStepWithoutACodeAnywhereInAChain) {
         ASSERT_TRUE(w.write(blocks[0], out).ok());
         EXPECT_EQ(out, text);
         for (std::size_t k = 0; k < n; ++k)
-            for (const Step bad : {Step{0}, Step{0x02}, Step{0x08}, Step{0x10}, Step{0x11}, Step{0x8004}}) {
+            for (const Step bad : {Step{0}, Step{0x02}, Step{0x08}, Step{0x10}, Step{0x11}, Step{0xFF}, Step{0x0105},
+                                   Step{0x8004}}) {
                 Block b = blocks[0];
                 b.chains[0].steps[k] = bad;
                 std::string o;
