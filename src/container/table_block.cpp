@@ -16,6 +16,7 @@
 #include <memory>
 #include <numeric>
 #include <type_traits>
+#include <utility>
 
 #include "../common/bytes.hpp"
 #include "arc_items.hpp"
@@ -176,6 +177,27 @@ private:
 
 using SuccList = MtfList<kSucc>;
 
+// An allocator whose resize() leaves the new elements uninitialized where
+// they are trivial (the history's arrays are written right after).
+template <class T>
+struct UninitAlloc : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitAlloc<U>;
+    };
+    UninitAlloc() = default;
+    template <class U>
+    UninitAlloc(const UninitAlloc<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... A>
+    void construct(U* p, A&&... a) {
+        ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+    }
+};
+
 // Segments that never move once stored, in chunks of 64, 128, ... 4096
 // (a deque's nodes hold five segments each: an allocation per five).
 class SegmentStore {
@@ -270,10 +292,10 @@ public:
     std::int64_t grid_ = 1;
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
-    std::vector<const Segment*> segs_;  // into own_ or the window's items
+    std::vector<const Segment*, UninitAlloc<const Segment*>> segs_;  // into own_ or the window's items
     SegmentStore own_;
     std::vector<Point> starts_;
-    std::vector<std::uint32_t> hist_;
+    std::vector<std::uint32_t, UninitAlloc<std::uint32_t>> hist_;
     // Shapes: id -> index in segs_ of the segment coded in full.
     std::vector<std::uint32_t> shape_;
     std::vector<SuccList> succ_;  // by id + 1 (0: none)
@@ -319,13 +341,15 @@ public:
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
             const Segment* seg = w.segments.data();
+            const std::size_t m = w.segments.size();
+            for (std::size_t q = 0; q < m; ++q) sp[si + q] = seg + q;
+            std::copy(w.starts.begin(), w.starts.end(), starts_.begin() + ci);
             for (std::size_t k = 0; k < w.starts.size(); ++k) {
-                starts_[ci] = w.starts[k];
                 *hp++ = kStartTag | ci++;
-                for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
-                    sp[si] = seg;
-                    *hp++ = kSegTag | si++;
-                }
+                const std::uint32_t cnt = w.counts[k];
+                for (std::uint32_t q = 0; q < cnt; ++q) hp[q] = kSegTag | (si + q);
+                hp += cnt;
+                si += cnt;
                 *hp++ = kEndTag;
             }
         }
@@ -1241,6 +1265,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         *items = SegmentItems{};
         // As declared, within what the payload's size can plausibly hold.
         items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, 8 * payload.size())));
+        const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
+        items->starts.reserve(starts);
+        items->counts.reserve(starts);
     }
     // Items the block may add after the window's.
     const std::uint64_t max_items = coder.hist_.size() + h.nsegments + 2 * h.nchains;
