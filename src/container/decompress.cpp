@@ -331,6 +331,9 @@ private:
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
                     info_.decoded_bytes += rendered.size();
                 }
+                // A table block's chains stay with its contribution while the
+                // window holds it (later table blocks copy their steps).
+                if (model == kTable && expand_ && window_.limit()) contribution->chains = std::move(block.chains);
                 // Before the history exists the decoded block itself is held:
                 // start_history() takes its symbols if a block ever needs them.
                 if (steps_frame_ && !steps_) held_block = std::move(block);
@@ -367,7 +370,12 @@ private:
             if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
             WindowBlock& w = *held->contribution;
             w.first_symbol = step_history_end(*steps_);
-            add_steps(w, held->block);
+            // A table block's chains are with its contribution: lent for this.
+            Block& block = held->block;
+            const bool lent = block.chains.empty() && !w.chains.empty();
+            if (lent) block.chains.swap(w.chains);
+            add_steps(w, block);
+            if (lent) w.chains.swap(block.chains);
             step_history_add(*steps_, w);
             w.symbols = {};
             w.starts = {};

@@ -1244,6 +1244,17 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     if (arcs) coder.arc_method_ = method;
     coder.raw_minors_ = raw_minors;
     start_output(out, expand, axes, std::move(*layout));
+    // Chains decoded before (the window's table blocks' and this block's),
+    // by the history position of their start item, oldest first: a match
+    // that copies one whole copies its steps instead of expanding its
+    // segments again (the same items give the same steps).
+    struct WholeChain {
+        std::size_t at, items;          // the start item's position; start, segments and end
+        bool arcs;                      // holds an arc item (those go through take)
+        const Step* steps;              // its steps (a chain's vector keeps its buffer when moved)
+        std::size_t n;
+    };
+    std::vector<WholeChain> whole;
     {
         // Room for the declared items, within what the payload's size can
         // plausibly hold (a match of a few bits may copy many items).
@@ -1253,6 +1264,22 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
             coder.prime(*window, segs, hist, starts);
+            if (expand) {
+                // The window's chains that a match may copy whole, at the
+                // history positions prime() gave their items.
+                std::size_t at = 0, n = 0;
+                for (const auto& b : *window) n += b->chains.size();
+                whole.reserve(n + static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
+                for (const auto& b : *window) {
+                    const SegmentItems& w = b->items;
+                    const bool kept = b->chains.size() == w.starts.size();
+                    for (std::size_t k = 0; k < w.starts.size(); ++k) {
+                        const std::size_t items_k = std::size_t{w.counts[k]} + 2;
+                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size()});
+                        at += items_k;
+                    }
+                }
+            }
         } else {
             coder.segs_.reserve(segs);
             coder.hist_.reserve(hist);
@@ -1283,6 +1310,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     Point ref{}, pos{};
     std::vector<Step> arc_scratch, spill;
     std::size_t chain_steps = 0;  // steps of the chain written into `steps`
+    std::size_t chain_at = 0;     // the history position of its start item
+    bool chain_arcs = false;      // it holds an arc item
     // The buffer's first size: the block's mean chain length.
     StepBuffer steps(static_cast<std::size_t>(
         std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16)));
@@ -1314,8 +1343,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         }
         return nullptr;
     };
-    // Takes history entry `e` (a decoded or copied item) into the output.
-    auto take = [&](std::uint32_t e) -> const char* {
+    // Takes history entry `e` (a decoded or copied item, at history position
+    // `at`) into the output.
+    auto take = [&](std::uint32_t e, std::size_t at) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
         if (kind == kStartTag) {
             if (in_chain) return "chain start inside a chain";
@@ -1325,6 +1355,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             chain = Chain{};
             chain.axes = axes;
             chain_steps = 0;
+            chain_at = at;
+            chain_arcs = false;
             if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
             pos = chain.start;
             if (items) {
@@ -1338,6 +1370,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             if (expand) {
                 chain.steps.assign(steps.data(), steps.data() + chain_steps);
                 out.chains.push_back(std::move(chain));
+                const std::vector<Step>& done = out.chains.back().steps;
+                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size()});
             }
         } else {
             if (!in_chain) return "segment outside a chain";
@@ -1357,6 +1391,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 }
                 ++seen_segments;
                 seen_steps += n;
+                chain_arcs = true;
                 pos[0] += seg.delta[0];
                 pos[1] += seg.delta[1];
                 if (items) {
@@ -1369,6 +1404,28 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             return take_line(seg);
         }
         return nullptr;
+    };
+    // Takes the copied chain at history position `at`, the same items as the
+    // earlier chain `c` (no arc among them): its start and end as take()
+    // does, its segments counted and entered into the block's items, its
+    // steps copied from `c`'s.
+    auto take_whole = [&](std::size_t at, const WholeChain& c) -> const char* {
+        if (const char* bad = take(coder.hist_[at], at)) return bad;
+        const std::size_t nseg = c.items - 2;
+        if (seen_segments + nseg > h.nsegments || seen_steps + c.n > h.nsteps)
+            return "more segments or steps than declared";
+        seen_segments += nseg;
+        seen_steps += c.n;
+        const std::uint32_t* e = coder.hist_.data() + at + 1;
+        for (std::size_t q = 0; q < nseg; ++q) {
+            const Segment& seg = *coder.segs_[e[q] & kIndexMask];
+            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+            if (items) items->segments.push_back(seg);
+        }
+        if (items) items->counts.back() += static_cast<std::uint32_t>(nseg);
+        std::memcpy(steps.room(0, c.n), c.steps, c.n * sizeof(Step));
+        chain_steps = c.n;
+        return take(coder.hist_[at + c.items - 1], at + c.items - 1);
     };
     while (in_chain || chains < h.nchains) {
         const unsigned op = coder.code_op(0);
@@ -1404,10 +1461,22 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             const std::size_t from = coder.hist_.size();
             coder.copy(off, len);
             for (std::size_t k = from; k < coder.hist_.size(); ++k) {
-                // A copied line segment straight to take_line (as take does).
                 const std::uint32_t e = coder.hist_[k];
+                if (expand && (e & ~kIndexMask) == kStartTag) {
+                    // A whole chain copied from one decoded before: its steps.
+                    const std::size_t src = k - static_cast<std::size_t>(off);
+                    const auto c = std::lower_bound(whole.begin(), whole.end(), src,
+                                                    [](const WholeChain& w, std::size_t v) { return w.at < v; });
+                    if (c != whole.end() && c->at == src && !c->arcs && c->items <= coder.hist_.size() - k) {
+                        const WholeChain w = *c;  // take_whole adds to `whole`
+                        if (const char* bad = take_whole(k, w)) return fail(bad);
+                        k += w.items - 1;
+                        continue;
+                    }
+                }
+                // A copied line segment straight to take_line (as take does).
                 const Segment* seg = (e & ~kIndexMask) == kSegTag ? coder.segs_[e & kIndexMask] : nullptr;
-                const char* bad = seg && !is_arc(*seg, axes) ? take_line(*seg) : take(e);
+                const char* bad = seg && !is_arc(*seg, axes) ? take_line(*seg) : take(e, k);
                 if (bad) return fail(bad);
             }
             continue;
@@ -1415,7 +1484,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         if (io.failed || io.rans.failed || io.bits.failed) return fail("bad item");
         if (coder.hist_.size() > max_items) return fail("more items than declared");
         // A shape's segment is a line; start, end and arc items go through take.
-        const char* e = op >= kOpSucc && op < kOpMatch ? take_line(*coder.segs_.back()) : take(coder.hist_.back());
+        const char* e = op >= kOpSucc && op < kOpMatch ? take_line(*coder.segs_.back())
+                                                       : take(coder.hist_.back(), coder.hist_.size() - 1);
         if (e) return fail(e);
     }
     if (seen_segments != h.nsegments || seen_steps != h.nsteps) return fail("declared segment or step count does not match");
