@@ -498,10 +498,12 @@ bool append_codes(std::string& out, const Chain& c) {
 }
 
 void append_canonical_head(std::string& out, const Chain& c) {
-    append_int(out, c.start[0]);
-    out.push_back(' ');
-    append_int(out, c.start[1]);
-    if (!c.steps.empty()) out.push_back(' ');
+    char buf[48];  // "X Y ": one append
+    char* w = put_int(buf, c.start[0]);
+    *w++ = ' ';
+    w = put_int(w, c.start[1]);
+    if (!c.steps.empty()) *w++ = ' ';
+    out.append(buf, w);
 }
 
 Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
