@@ -93,7 +93,7 @@ inline bool leading_two_axis_into(const Point& delta, std::int64_t f0, Step* o) 
 }
 
 /// expand_segment_into on two axes.
-inline bool expand_two_axis_into(Profile p, const Segment& seg, Step* out) {
+[[gnu::always_inline]] inline bool expand_two_axis_into(Profile p, const Segment& seg, Step* out) {
     switch (p) {
         case Profile::eval4: {
             const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]), f0 = seg.phase[0];
