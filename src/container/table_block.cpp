@@ -166,7 +166,11 @@ public:
     }
     void to_front(std::size_t r) {
         const std::uint32_t id = at(r);
-        for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
+        if (r >= 16 && head_ + r < kRecent) {  // ranks 0..r-1 in one piece: one move
+            std::memmove(&ring_[head_ + 1], &ring_[head_], r * sizeof(std::uint32_t));
+        } else {
+            for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
+        }
         ring_[head_] = id;
     }
 
@@ -633,14 +637,18 @@ public:
 
     // Copies `len` items from `off` items back, one by one (they may overlap).
     void copy(std::uint64_t off, std::uint64_t len) {
-        const std::size_t from = hist_.size() - static_cast<std::size_t>(off);
-        std::uint32_t last_seg = kNone;
-        for (std::size_t k = 0; k < len; ++k) {
-            const std::uint32_t e = hist_[from + k];
-            hist_.push_back(e);
-            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], ax())) last_seg = e;
+        const std::size_t at = hist_.size(), from = at - static_cast<std::size_t>(off);
+        hist_.resize(at + static_cast<std::size_t>(len));
+        std::uint32_t* h = hist_.data();
+        for (std::size_t k = 0; k < len; ++k) h[at + k] = h[from + k];  // in order: they may overlap
+        // The fields' context: the last line segment copied.
+        for (std::size_t k = at + static_cast<std::size_t>(len); k > at; --k) {
+            const std::uint32_t e = h[k - 1];
+            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], ax())) {
+                note_fields(*segs_[e & kIndexMask]);
+                break;
+            }
         }
-        if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
         prev_shape_ = kNone;
         prev_op_ = kAfterMatch;
     }
