@@ -346,11 +346,13 @@ public:
             const SegmentItems& w = b->items;
             const Segment* seg = w.segments.data();
             const std::size_t m = w.segments.size();
+#pragma GCC unroll 4
             for (std::size_t q = 0; q < m; ++q) sp[si + q] = seg + q;
             std::copy(w.starts.begin(), w.starts.end(), starts_.begin() + ci);
             for (std::size_t k = 0; k < w.starts.size(); ++k) {
                 *hp++ = kStartTag | ci++;
                 const std::uint32_t cnt = w.counts[k];
+#pragma GCC unroll 4
                 for (std::uint32_t q = 0; q < cnt; ++q) hp[q] = kSegTag | (si + q);
                 hp += cnt;
                 si += cnt;
@@ -640,7 +642,9 @@ public:
         const std::size_t at = hist_.size(), from = at - static_cast<std::size_t>(off);
         hist_.resize(at + static_cast<std::size_t>(len));
         std::uint32_t* h = hist_.data();
-        for (std::size_t k = 0; k < len; ++k) h[at + k] = h[from + k];  // in order: they may overlap
+        if (off >= len) std::memcpy(h + at, h + from, static_cast<std::size_t>(len) * sizeof *h);
+        else
+            for (std::size_t k = 0; k < len; ++k) h[at + k] = h[from + k];  // in order: they overlap
         // The fields' context: the last line segment copied.
         for (std::size_t k = at + static_cast<std::size_t>(len); k > at; --k) {
             const std::uint32_t e = h[k - 1];
