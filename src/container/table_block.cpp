@@ -207,17 +207,27 @@ struct UninitAlloc : std::allocator<T> {
 class SegmentStore {
 public:
     const Segment& push_back(const Segment& s) {
+        Segment& at = slot();
+        at = s;
+        return at;
+    }
+    /// A new segment of zeros, written in place.
+    Segment& emplace() {
+        Segment& at = slot();
+        at = Segment{};
+        return at;
+    }
+
+private:
+    Segment& slot() {
         if (used_ == size_) {
             size_ = std::min<std::size_t>(kMaxChunk, std::size_t{64} << std::min<std::size_t>(chunks_.size(), 6));
             chunks_.push_back(std::make_unique_for_overwrite<Segment[]>(size_));
             used_ = 0;
         }
-        Segment& at = chunks_.back()[used_++];
-        at = s;
-        return at;
+        return chunks_.back()[used_++];
     }
 
-private:
     static constexpr std::size_t kMaxChunk = 4096;
     std::vector<std::unique_ptr<Segment[]>> chunks_;
     std::size_t used_ = 0, size_ = 0;
@@ -438,8 +448,9 @@ public:
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
+    // Enters a segment of own_ (stored in place) into the history.
     void push_seg(const Segment& seg) {
-        segs_.push_back(&own_.push_back(seg));
+        segs_.push_back(&seg);
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         note_fields(seg);
     }
@@ -498,7 +509,7 @@ public:
         if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
         const std::int64_t l = static_cast<std::int64_t>(l1) + 1;
         const int bl = cap(std::bit_width(static_cast<std::uint64_t>(l)), 11);
-        Segment seg{};
+        Segment& seg = own_.emplace();  // in place (a failed segment stays unused)
         int j = 0;
         for (int i = 0; i < ax(); ++i) {
             std::int64_t v = l;
