@@ -166,8 +166,10 @@ public:
     }
     void to_front(std::size_t r) {
         const std::uint32_t id = at(r);
-        if (r >= 16 && head_ + r < kRecent) {  // ranks 0..r-1 in one piece: one move
-            std::memmove(&ring_[head_ + 1], &ring_[head_], r * sizeof(std::uint32_t));
+        if (head_ + r < kRecent) {  // ranks 0..r-1 in one piece
+            if (r >= 16) std::memmove(&ring_[head_ + 1], &ring_[head_], r * sizeof(std::uint32_t));
+            else
+                for (std::size_t i = head_ + r; i > head_; --i) ring_[i] = ring_[i - 1];
         } else {
             for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
         }
@@ -286,7 +288,9 @@ inline void canonical_into(Profile p, const Segment& s, int axes, Segment& c) {
 }
 
 // kAxes: the axis count fixed at compile time (the decoder's loop for two
-// axes), 0: given at run time.
+// axes), 0: given at run time. The per-item operations are flattened
+// ([[gnu::flatten]]): GCC otherwise calls their vector pushes and small
+// helpers out of line.
 template <class Io, int kAxes = 0>
 class TableCoder {
 public:
@@ -406,7 +410,7 @@ public:
     unsigned code_op(unsigned want) { return io_.sym(kTOp + prev_op_, want); }
 
     // A chain start: the delta over the grid per axis.
-    bool code_start(const Point& want, Point& delta) {
+    [[gnu::flatten]] bool code_start(const Point& want, Point& delta) {
         for (int i = 0; i < ax(); ++i) {
             const std::uint64_t v = code_uint(kTStart + (i != 0), Io::kDecode ? 0 : zig(want[i] / grid_));
             delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(unzig(v)) * static_cast<std::uint64_t>(grid_));
@@ -418,7 +422,7 @@ public:
         return !io_.failed;
     }
 
-    void code_end() {
+    [[gnu::flatten]] void code_end() {
         hist_.push_back(kEndTag);
         prev_op_ = kAfterEnd;
     }
@@ -436,7 +440,7 @@ public:
 
     // A segment given by shape id `id` (coded by successor or recent rank).
     // The item refers to the shape's stored segment (segments never move).
-    void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
+    [[gnu::flatten]] void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
         const Segment* seg = segs_[shape_[id]];
         if (from_recent_rank) recent_.to_front(r);
         else recent_.push_front(id);
@@ -449,7 +453,7 @@ public:
     }
 
     // Enters a segment of own_ (stored in place) into the history.
-    void push_seg(const Segment& seg) {
+    [[gnu::flatten]] void push_seg(const Segment& seg) {
         segs_.push_back(&seg);
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         note_fields(seg);
@@ -476,7 +480,7 @@ public:
 
     // A segment coded in full after its operation (2D: the operation gave
     // the turn; N-D: whether the direction is the previous one).
-    bool code_full(unsigned op, const Segment* want) {
+    [[gnu::flatten]] bool code_full(unsigned op, const Segment* want) {
         int lead = 0;
         unsigned neg = 0;
         int turn = 0;
@@ -649,7 +653,7 @@ public:
     }
 
     // Copies `len` items from `off` items back, one by one (they may overlap).
-    void copy(std::uint64_t off, std::uint64_t len) {
+    [[gnu::flatten]] void copy(std::uint64_t off, std::uint64_t len) {
         const std::size_t at = hist_.size(), from = at - static_cast<std::size_t>(off);
         hist_.resize(at + static_cast<std::size_t>(len));
         std::uint32_t* h = hist_.data();
