@@ -1372,7 +1372,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     };
     // Takes history entry `e` (a decoded or copied item, at history position
     // `at`) into the output.
-    auto take = [&](std::uint32_t e, std::size_t at) -> const char* {
+    auto take = [&](std::uint32_t e, std::size_t at) __attribute__((flatten)) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
         if (kind == kStartTag) {
             if (in_chain) return "chain start inside a chain";
@@ -1436,7 +1436,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     // earlier chain `c` (no arc among them): its start and end as take()
     // does, its segments counted and entered into the block's items, its
     // steps copied from `c`'s.
-    auto take_whole = [&](std::size_t at, const WholeChain& c) -> const char* {
+    auto take_whole = [&](std::size_t at, const WholeChain& c) __attribute__((flatten)) -> const char* {
         if (const char* bad = take(coder.hist_[at], at)) return bad;
         const std::size_t nseg = c.items - 2;
         if (seen_segments + nseg > h.nsegments || seen_steps + c.n > h.nsteps)
