@@ -734,11 +734,29 @@ TEST(BlockWriter, RefusesLayoutsThatDoNotFit) {
 }
 
 TEST(BlockWriter, FreemanRefusesAStepWithoutACodeAnywhereInAChain) {
-    // The renderer writes sixteen steps a round (with SSSE3), then four a
-    // round, and checks the codes after each loop: a bad step at any place of
-    // either round or of the tail is refused.
+    // The renderer writes a chain in pieces of 1024 steps, sixteen steps a
+    // round (with SSSE3), then four a round, and checks the codes after each
+    // loop: a bad step at any place of either round, of the tail or of a
+    // later piece is refused.
     std::mt19937 rng(17);
     BlockWriter w(InputFormat::freeman);
+    for (std::size_t n : {std::size_t{1023}, std::size_t{1024}, std::size_t{1025}, std::size_t{2100}}) {
+        std::string codes;
+        for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));
+        const std::string text = "4 -1 " + codes + "\n";
+        const auto blocks = read_blocks(InputFormat::freeman, text, 100000, 100);
+        ASSERT_EQ(blocks.size(), 1u);
+        std::string out;
+        ASSERT_TRUE(w.write(blocks[0], out).ok());
+        EXPECT_EQ(out, text);
+        for (std::size_t k : {std::size_t{0}, std::size_t{1022}, std::size_t{1023}, n - 2, n - 1}) {
+            if (k >= n) continue;
+            Block b = blocks[0];
+            b.chains[0].steps[k] = Step{0x10};
+            std::string o;
+            EXPECT_FALSE(w.write(b, o).ok()) << n << " " << k;
+        }
+    }
     for (std::size_t n = 1; n <= 40; ++n) {
         std::string codes;
         for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));

@@ -459,11 +459,9 @@ public:
 const bool kHasShuffle = __builtin_cpu_supports("ssse3");
 #endif
 
-bool append_codes(std::string& out, const Chain& c) {
-    const std::size_t n = c.steps.size(), at = out.size();
-    out.resize(at + n);
-    char* w = out.data() + at;
-    const Step* s = c.steps.data();
+// The Freeman digits of the n steps at s into w[0, n); false when a step
+// has none.
+bool codes_into(const Step* s, std::size_t n, char* w) {
     std::size_t i = 0;
 #if defined(__SSE2__) && defined(__GNUC__)
     if (kHasShuffle && n >= 16 && (i = codes_by_shuffle(s, n, w)) == SIZE_MAX) return false;
@@ -497,6 +495,20 @@ bool append_codes(std::string& out, const Chain& c) {
     return true;
 }
 
+// A chain's digits appended in pieces of up to 1 KiB made on the stack
+// (growing the string by resize() would write every byte twice: zeros,
+// then the digits).
+bool append_codes(std::string& out, const Chain& c) {
+    char buf[1024];
+    const Step* s = c.steps.data();
+    for (std::size_t i = 0, n = c.steps.size(); i < n; i += sizeof buf) {
+        const std::size_t k = std::min(sizeof buf, n - i);
+        if (!codes_into(s + i, k, buf)) return false;
+        out.append(buf, k);
+    }
+    return true;
+}
+
 void append_canonical_head(std::string& out, const Chain& c) {
     char buf[48];  // "X Y ": one append
     char* w = put_int(buf, c.start[0]);
@@ -509,8 +521,12 @@ void append_canonical_head(std::string& out, const Chain& c) {
 Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
     const auto& ch = b.chains;
     const std::size_t n = ch.size();
-    for (const Chain& c : ch)
+    std::size_t bytes = out.size();  // room for the canonical lines: one growth of `out` at most
+    for (const Chain& c : ch) {
         if (c.axes != 2) return corrupt("freeman", "a chain that is not two-axis");
+        bytes += c.steps.size() + 48;
+    }
+    out.reserve(bytes);
     std::size_t i = 0;
     if (b.continues) {
         if (n == 0) return corrupt("freeman", "a continued block without chains");
