@@ -236,6 +236,9 @@ private:
             if (!*more) return {};
             const std::string_view payload = std::string_view(rec_).substr(b.header, b.csize);
             auto contribution = std::make_shared<WindowBlock>();
+            // The segments' memory of a block that left the window (its pages
+            // are in place: a fresh array of several MB is faulted in again).
+            contribution->items.segments = std::move(spare_segments_);
             const WindowView view = window_.view();
             const bool step_model = b.type == kStepModel || (b.type == kMixedModel && !payload.empty() &&
                                                              mixed_model_of(static_cast<unsigned char>(payload[0])) == kStepModel);
@@ -345,8 +348,11 @@ private:
                 const WindowView now = window_.view();
                 while (!held_.empty() && std::none_of(now.begin(), now.end(), [&](const auto& b) {
                            return b.get() == held_.front().contribution.get();
-                       }))
+                       })) {
+                    // Out of the window: no later block reads its items.
+                    spare_segments_ = std::move(held_.front().contribution->items.segments);
                     held_.pop_front();
+                }
             }
             if (out_) {
                 XXH64_update(state_, rendered.data(), rendered.size());
@@ -488,6 +494,7 @@ private:
         Block block;
     };
     std::deque<Held> held_;
+    std::vector<Segment> spare_segments_;  // see blocks()
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;

@@ -1316,7 +1316,10 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
     }
     if (items) {
+        std::vector<Segment> room = std::move(items->segments);  // a caller's spare memory, kept
+        room.clear();
         *items = SegmentItems{};
+        items->segments = std::move(room);
         // As declared, within what the payload's size can plausibly hold.
         items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, 8 * payload.size())));
         const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
