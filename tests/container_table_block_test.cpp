@@ -121,6 +121,36 @@ TEST(ContainerTable, MatchesReachIntoTheWindow) {
     }
 }
 
+// A match that copies a whole chain decoded before copies its steps (the
+// window's table blocks keep their decoded chains, and the block's own
+// chains are kept as they end): the steps must be those its segments
+// expand to, from the window and within the block, on two and four axes.
+TEST(ContainerTable, WholeChainMatchesCopyTheDecodedSteps) {
+    const auto twice = [](const Block& b, const Cut& segs) {
+        std::pair<Block, Cut> t{b, segs};
+        t.first.chains.insert(t.first.chains.end(), b.chains.begin(), b.chains.end());
+        t.second.insert(t.second.end(), segs.begin(), segs.end());
+        return t;
+    };
+    const Block first = corpus_block("plotter/hershey-eval8.fc", 30000);
+    const Cut segs = greedy_cut(first, Profile::eval8);
+    auto w = std::make_shared<WindowBlock>();
+    w->items = segment_items(first, segs);
+    w->chains = first.chains;
+    const WindowView window{w};
+    unsigned type = 0;
+    const std::string windowed =
+        write_table_block(first, Profile::eval8, segs, TableEffort{}, &window, nullptr, nullptr, &type);
+    expect_decodes_to(windowed, first, Profile::eval8, segs, &window, type);
+    const auto [both, both_segs] = twice(first, segs);
+    expect_decodes_to(write_table_block(both, Profile::eval8, both_segs), both, Profile::eval8, both_segs);
+    const std::string text = slurp(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / "stepper" /
+                                   "engrave-4axis.steps");
+    const Block four = text_block(InputFormat::steps, text);
+    const auto [four2, four2_segs] = twice(four, greedy_cut(four, Profile::grbl));
+    expect_decodes_to(write_table_block(four2, Profile::grbl, four2_segs), four2, Profile::grbl, four2_segs);
+}
+
 // The item keys and canonical segments an encoder keeps (a block's first
 // pass, handed to its window contribution) are the ones a later block would
 // make from the window's items, and coding with them gives the same bytes

@@ -734,21 +734,31 @@ TEST(BlockWriter, RefusesLayoutsThatDoNotFit) {
 }
 
 TEST(BlockWriter, FreemanRefusesAStepWithoutACodeAnywhereInAChain) {
-    // The renderer writes four steps a round and checks the codes after the
-    // loop: a bad step at any place of a round or of the tail is refused.
+    // The renderer writes a chain in pieces of 1024 steps, sixteen steps a
+    // round (with SSSE3), then four a round, and checks the codes after each
+    // loop: a bad step at any place of either round, of the tail or of a
+    // later piece is refused.
     std::mt19937 rng(17);
     BlockWriter w(InputFormat::freeman);
-    for (std::size_t n = 1; n <= 13; ++n) {
+    std::vector<std::size_t> sizes;
+    for (std::size_t n = 1; n <= 40; ++n) sizes.push_back(n);
+    for (std::size_t n : {1023, 1024, 1025, 2100}) sizes.push_back(n);
+    for (const std::size_t n : sizes) {
         std::string codes;
         for (std::size_t i = 0; i < n; ++i) codes.push_back(static_cast<char>('0' + rng() % 8));
         const std::string text = "4 -1 " + codes + "\n";
-        const auto blocks = read_blocks(InputFormat::freeman, text, 100, 100);
+        const auto blocks = read_blocks(InputFormat::freeman, text, 100000, 100);
         ASSERT_EQ(blocks.size(), 1u);
         std::string out;
         ASSERT_TRUE(w.write(blocks[0], out).ok());
         EXPECT_EQ(out, text);
+        // Every place of a short chain; a long one's ends and piece boundaries.
+        std::vector<std::size_t> places;
         for (std::size_t k = 0; k < n; ++k)
-            for (const Step bad : {Step{0}, Step{0x02}, Step{0x08}, Step{0x10}, Step{0x11}, Step{0x8004}}) {
+            if (n <= 40 || k == 0 || k == 1022 || k == 1023 || k + 2 >= n) places.push_back(k);
+        for (const std::size_t k : places)
+            for (const Step bad : {Step{0}, Step{0x02}, Step{0x08}, Step{0x10}, Step{0x11}, Step{0xFF}, Step{0x0105},
+                                   Step{0x8004}}) {
                 Block b = blocks[0];
                 b.chains[0].steps[k] = bad;
                 std::string o;

@@ -236,6 +236,9 @@ private:
             if (!*more) return {};
             const std::string_view payload = std::string_view(rec_).substr(b.header, b.csize);
             auto contribution = std::make_shared<WindowBlock>();
+            // The segments' memory of a block that left the window (its pages
+            // are in place: a fresh array of several MB is faulted in again).
+            contribution->items.segments = std::move(spare_segments_);
             const WindowView view = window_.view();
             const bool step_model = b.type == kStepModel || (b.type == kMixedModel && !payload.empty() &&
                                                              mixed_model_of(static_cast<unsigned char>(payload[0])) == kStepModel);
@@ -331,6 +334,9 @@ private:
                         return make_error(rr.error().code, where_ + ": " + rr.error().message);
                     info_.decoded_bytes += rendered.size();
                 }
+                // A table block's chains stay with its contribution while the
+                // window holds it (later table blocks copy their steps).
+                if (model == kTable && expand_ && window_.limit()) contribution->chains = std::move(block.chains);
                 // Before the history exists the decoded block itself is held:
                 // start_history() takes its symbols if a block ever needs them.
                 if (steps_frame_ && !steps_) held_block = std::move(block);
@@ -342,8 +348,11 @@ private:
                 const WindowView now = window_.view();
                 while (!held_.empty() && std::none_of(now.begin(), now.end(), [&](const auto& b) {
                            return b.get() == held_.front().contribution.get();
-                       }))
+                       })) {
+                    // Out of the window: no later block reads its items.
+                    spare_segments_ = std::move(held_.front().contribution->items.segments);
                     held_.pop_front();
+                }
             }
             if (out_) {
                 XXH64_update(state_, rendered.data(), rendered.size());
@@ -367,7 +376,12 @@ private:
             if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
             WindowBlock& w = *held->contribution;
             w.first_symbol = step_history_end(*steps_);
-            add_steps(w, held->block);
+            // A table block's chains are with its contribution: lent for this.
+            Block& block = held->block;
+            const bool lent = block.chains.empty() && !w.chains.empty();
+            if (lent) block.chains.swap(w.chains);
+            add_steps(w, block);
+            if (lent) w.chains.swap(block.chains);
             step_history_add(*steps_, w);
             w.symbols = {};
             w.starts = {};
@@ -480,6 +494,7 @@ private:
         Block block;
     };
     std::deque<Held> held_;
+    std::vector<Segment> spare_segments_;  // see blocks()
     bool expand_ = false;
     std::unique_ptr<BlockWriter> writer_;
     XXH64_state_t* state_ = nullptr;

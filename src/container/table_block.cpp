@@ -16,6 +16,7 @@
 #include <memory>
 #include <numeric>
 #include <type_traits>
+#include <utility>
 
 #include "../common/bytes.hpp"
 #include "arc_items.hpp"
@@ -165,7 +166,13 @@ public:
     }
     void to_front(std::size_t r) {
         const std::uint32_t id = at(r);
-        for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
+        if (head_ + r < kRecent) {  // ranks 0..r-1 in one piece
+            if (r >= 16) std::memmove(&ring_[head_ + 1], &ring_[head_], r * sizeof(std::uint32_t));
+            else
+                for (std::size_t i = head_ + r; i > head_; --i) ring_[i] = ring_[i - 1];
+        } else {
+            for (; r > 0; --r) ring_[(head_ + r) & (kRecent - 1)] = ring_[(head_ + r - 1) & (kRecent - 1)];
+        }
         ring_[head_] = id;
     }
 
@@ -176,22 +183,53 @@ private:
 
 using SuccList = MtfList<kSucc>;
 
+// An allocator whose resize() leaves the new elements uninitialized where
+// they are trivial (the history's arrays are written right after).
+template <class T>
+struct UninitAlloc : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitAlloc<U>;
+    };
+    UninitAlloc() = default;
+    template <class U>
+    UninitAlloc(const UninitAlloc<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... A>
+    void construct(U* p, A&&... a) {
+        ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+    }
+};
+
 // Segments that never move once stored, in chunks of 64, 128, ... 4096
 // (a deque's nodes hold five segments each: an allocation per five).
 class SegmentStore {
 public:
     const Segment& push_back(const Segment& s) {
+        Segment& at = slot();
+        at = s;
+        return at;
+    }
+    /// A new segment of zeros, written in place.
+    Segment& emplace() {
+        Segment& at = slot();
+        at = Segment{};
+        return at;
+    }
+
+private:
+    Segment& slot() {
         if (used_ == size_) {
             size_ = std::min<std::size_t>(kMaxChunk, std::size_t{64} << std::min<std::size_t>(chunks_.size(), 6));
             chunks_.push_back(std::make_unique_for_overwrite<Segment[]>(size_));
             used_ = 0;
         }
-        Segment& at = chunks_.back()[used_++];
-        at = s;
-        return at;
+        return chunks_.back()[used_++];
     }
 
-private:
     static constexpr std::size_t kMaxChunk = 4096;
     std::vector<std::unique_ptr<Segment[]>> chunks_;
     std::size_t used_ = 0, size_ = 0;
@@ -250,7 +288,9 @@ inline void canonical_into(Profile p, const Segment& s, int axes, Segment& c) {
 }
 
 // kAxes: the axis count fixed at compile time (the decoder's loop for two
-// axes), 0: given at run time.
+// axes), 0: given at run time. The per-item operations are flattened
+// ([[gnu::flatten]]): GCC otherwise calls their vector pushes and small
+// helpers out of line.
 template <class Io, int kAxes = 0>
 class TableCoder {
 public:
@@ -270,10 +310,10 @@ public:
     std::int64_t grid_ = 1;
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
-    std::vector<const Segment*> segs_;  // into own_ or the window's items
+    std::vector<const Segment*, UninitAlloc<const Segment*>> segs_;  // into own_ or the window's items
     SegmentStore own_;
     std::vector<Point> starts_;
-    std::vector<std::uint32_t> hist_;
+    std::vector<std::uint32_t, UninitAlloc<std::uint32_t>> hist_;
     // Shapes: id -> index in segs_ of the segment coded in full.
     std::vector<std::uint32_t> shape_;
     std::vector<SuccList> succ_;  // by id + 1 (0: none)
@@ -319,13 +359,17 @@ public:
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
             const Segment* seg = w.segments.data();
+            const std::size_t m = w.segments.size();
+#pragma GCC unroll 4
+            for (std::size_t q = 0; q < m; ++q) sp[si + q] = seg + q;
+            std::copy(w.starts.begin(), w.starts.end(), starts_.begin() + ci);
             for (std::size_t k = 0; k < w.starts.size(); ++k) {
-                starts_[ci] = w.starts[k];
                 *hp++ = kStartTag | ci++;
-                for (std::uint32_t q = 0; q < w.counts[k]; ++q, ++seg) {
-                    sp[si] = seg;
-                    *hp++ = kSegTag | si++;
-                }
+                const std::uint32_t cnt = w.counts[k];
+#pragma GCC unroll 4
+                for (std::uint32_t q = 0; q < cnt; ++q) hp[q] = kSegTag | (si + q);
+                hp += cnt;
+                si += cnt;
                 *hp++ = kEndTag;
             }
         }
@@ -366,7 +410,7 @@ public:
     unsigned code_op(unsigned want) { return io_.sym(kTOp + prev_op_, want); }
 
     // A chain start: the delta over the grid per axis.
-    bool code_start(const Point& want, Point& delta) {
+    [[gnu::flatten]] bool code_start(const Point& want, Point& delta) {
         for (int i = 0; i < ax(); ++i) {
             const std::uint64_t v = code_uint(kTStart + (i != 0), Io::kDecode ? 0 : zig(want[i] / grid_));
             delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(unzig(v)) * static_cast<std::uint64_t>(grid_));
@@ -378,7 +422,7 @@ public:
         return !io_.failed;
     }
 
-    void code_end() {
+    [[gnu::flatten]] void code_end() {
         hist_.push_back(kEndTag);
         prev_op_ = kAfterEnd;
     }
@@ -396,7 +440,7 @@ public:
 
     // A segment given by shape id `id` (coded by successor or recent rank).
     // The item refers to the shape's stored segment (segments never move).
-    void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
+    [[gnu::flatten]] void take_shape(std::uint32_t id, bool from_recent_rank, std::size_t r) {
         const Segment* seg = segs_[shape_[id]];
         if (from_recent_rank) recent_.to_front(r);
         else recent_.push_front(id);
@@ -408,8 +452,9 @@ public:
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
-    void push_seg(const Segment& seg) {
-        segs_.push_back(&own_.push_back(seg));
+    // Enters a segment of own_ (stored in place) into the history.
+    [[gnu::flatten]] void push_seg(const Segment& seg) {
+        segs_.push_back(&seg);
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
         note_fields(seg);
     }
@@ -435,7 +480,7 @@ public:
 
     // A segment coded in full after its operation (2D: the operation gave
     // the turn; N-D: whether the direction is the previous one).
-    bool code_full(unsigned op, const Segment* want) {
+    [[gnu::flatten]] bool code_full(unsigned op, const Segment* want) {
         int lead = 0;
         unsigned neg = 0;
         int turn = 0;
@@ -468,7 +513,7 @@ public:
         if (io_.failed || l1 >= static_cast<std::uint64_t>(kMaxSegmentTotal)) return fail("segment too long");
         const std::int64_t l = static_cast<std::int64_t>(l1) + 1;
         const int bl = cap(std::bit_width(static_cast<std::uint64_t>(l)), 11);
-        Segment seg{};
+        Segment& seg = own_.emplace();  // in place (a failed segment stays unused)
         int j = 0;
         for (int i = 0; i < ax(); ++i) {
             std::int64_t v = l;
@@ -608,15 +653,21 @@ public:
     }
 
     // Copies `len` items from `off` items back, one by one (they may overlap).
-    void copy(std::uint64_t off, std::uint64_t len) {
-        const std::size_t from = hist_.size() - static_cast<std::size_t>(off);
-        std::uint32_t last_seg = kNone;
-        for (std::size_t k = 0; k < len; ++k) {
-            const std::uint32_t e = hist_[from + k];
-            hist_.push_back(e);
-            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], ax())) last_seg = e;
+    [[gnu::flatten]] void copy(std::uint64_t off, std::uint64_t len) {
+        const std::size_t at = hist_.size(), from = at - static_cast<std::size_t>(off);
+        hist_.resize(at + static_cast<std::size_t>(len));
+        std::uint32_t* h = hist_.data();
+        if (off >= len) std::memcpy(h + at, h + from, static_cast<std::size_t>(len) * sizeof *h);
+        else
+            for (std::size_t k = 0; k < len; ++k) h[at + k] = h[from + k];  // in order: they overlap
+        // The fields' context: the last line segment copied.
+        for (std::size_t k = at + static_cast<std::size_t>(len); k > at; --k) {
+            const std::uint32_t e = h[k - 1];
+            if ((e & ~kIndexMask) == kSegTag && !is_arc(*segs_[e & kIndexMask], ax())) {
+                note_fields(*segs_[e & kIndexMask]);
+                break;
+            }
         }
-        if (last_seg != kNone) note_fields(*segs_[last_seg & kIndexMask]);
         prev_shape_ = kNone;
         prev_op_ = kAfterMatch;
     }
@@ -1220,6 +1271,17 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     if (arcs) coder.arc_method_ = method;
     coder.raw_minors_ = raw_minors;
     start_output(out, expand, axes, std::move(*layout));
+    // Chains decoded before (the window's table blocks' and this block's),
+    // by the history position of their start item, oldest first: a match
+    // that copies one whole copies its steps instead of expanding its
+    // segments again (the same items give the same steps).
+    struct WholeChain {
+        std::size_t at, items;          // the start item's position; start, segments and end
+        bool arcs;                      // holds an arc item (those go through take)
+        const Step* steps;              // its steps (a chain's vector keeps its buffer when moved)
+        std::size_t n;
+    };
+    std::vector<WholeChain> whole;
     {
         // Room for the declared items, within what the payload's size can
         // plausibly hold (a match of a few bits may copy many items).
@@ -1229,6 +1291,22 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
             coder.prime(*window, segs, hist, starts);
+            if (expand) {
+                // The window's chains that a match may copy whole, at the
+                // history positions prime() gave their items.
+                std::size_t at = 0, n = 0;
+                for (const auto& b : *window) n += b->chains.size();
+                whole.reserve(n + static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
+                for (const auto& b : *window) {
+                    const SegmentItems& w = b->items;
+                    const bool kept = b->chains.size() == w.starts.size();
+                    for (std::size_t k = 0; k < w.starts.size(); ++k) {
+                        const std::size_t items_k = std::size_t{w.counts[k]} + 2;
+                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size()});
+                        at += items_k;
+                    }
+                }
+            }
         } else {
             coder.segs_.reserve(segs);
             coder.hist_.reserve(hist);
@@ -1238,7 +1316,10 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
     }
     if (items) {
+        std::vector<Segment> room = std::move(items->segments);  // a caller's spare memory, kept
+        room.clear();
         *items = SegmentItems{};
+        items->segments = std::move(room);
         // As declared, within what the payload's size can plausibly hold
         // plus what its matches may copy from the window (whose segments the
         // decoder holds already): a block that repeats its window is a few
@@ -1246,6 +1327,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         // the peak (rep.fc at -L 1: 100 of the decoder's 145 MB).
         const std::uint64_t plausible_segs = 8 * payload.size() + coder.segs_.size();
         items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible_segs)));
+        const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
+        items->starts.reserve(starts);
+        items->counts.reserve(starts);
     }
     // Items the block may add after the window's.
     const std::uint64_t max_items = coder.hist_.size() + h.nsegments + 2 * h.nchains;
@@ -1261,6 +1345,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     Point ref{}, pos{};
     std::vector<Step> arc_scratch, spill;
     std::size_t chain_steps = 0;  // steps of the chain written into `steps`
+    std::size_t chain_at = 0;     // the history position of its start item
+    bool chain_arcs = false;      // it holds an arc item
     // The buffer's first size: the block's mean chain length.
     StepBuffer steps(static_cast<std::size_t>(
         std::clamp<std::uint64_t>(h.nsteps / std::max<std::uint64_t>(h.nchains, 1), 16, 1 << 16)));
@@ -1292,8 +1378,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         }
         return nullptr;
     };
-    // Takes history entry `e` (a decoded or copied item) into the output.
-    auto take = [&](std::uint32_t e) -> const char* {
+    // Takes history entry `e` (a decoded or copied item, at history position
+    // `at`) into the output.
+    auto take = [&](std::uint32_t e, std::size_t at) __attribute__((flatten)) -> const char* {
         const std::uint32_t kind = e & ~kIndexMask;
         if (kind == kStartTag) {
             if (in_chain) return "chain start inside a chain";
@@ -1303,6 +1390,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             chain = Chain{};
             chain.axes = axes;
             chain_steps = 0;
+            chain_at = at;
+            chain_arcs = false;
             if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
             pos = chain.start;
             if (items) {
@@ -1316,6 +1405,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             if (expand) {
                 chain.steps.assign(steps.data(), steps.data() + chain_steps);
                 out.chains.push_back(std::move(chain));
+                const std::vector<Step>& done = out.chains.back().steps;
+                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size()});
             }
         } else {
             if (!in_chain) return "segment outside a chain";
@@ -1335,6 +1426,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 }
                 ++seen_segments;
                 seen_steps += n;
+                chain_arcs = true;
                 pos[0] += seg.delta[0];
                 pos[1] += seg.delta[1];
                 if (items) {
@@ -1347,6 +1439,28 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             return take_line(seg);
         }
         return nullptr;
+    };
+    // Takes the copied chain at history position `at`, the same items as the
+    // earlier chain `c` (no arc among them): its start and end as take()
+    // does, its segments counted and entered into the block's items, its
+    // steps copied from `c`'s.
+    auto take_whole = [&](std::size_t at, const WholeChain& c) __attribute__((flatten)) -> const char* {
+        if (const char* bad = take(coder.hist_[at], at)) return bad;
+        const std::size_t nseg = c.items - 2;
+        if (seen_segments + nseg > h.nsegments || seen_steps + c.n > h.nsteps)
+            return "more segments or steps than declared";
+        seen_segments += nseg;
+        seen_steps += c.n;
+        const std::uint32_t* e = coder.hist_.data() + at + 1;
+        for (std::size_t q = 0; q < nseg; ++q) {
+            const Segment& seg = *coder.segs_[e[q] & kIndexMask];
+            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+            if (items) items->segments.push_back(seg);
+        }
+        if (items) items->counts.back() += static_cast<std::uint32_t>(nseg);
+        std::memcpy(steps.room(0, c.n), c.steps, c.n * sizeof(Step));
+        chain_steps = c.n;
+        return take(coder.hist_[at + c.items - 1], at + c.items - 1);
     };
     while (in_chain || chains < h.nchains) {
         const unsigned op = coder.code_op(0);
@@ -1382,10 +1496,22 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             const std::size_t from = coder.hist_.size();
             coder.copy(off, len);
             for (std::size_t k = from; k < coder.hist_.size(); ++k) {
-                // A copied line segment straight to take_line (as take does).
                 const std::uint32_t e = coder.hist_[k];
+                if (expand && (e & ~kIndexMask) == kStartTag) {
+                    // A whole chain copied from one decoded before: its steps.
+                    const std::size_t src = k - static_cast<std::size_t>(off);
+                    const auto c = std::lower_bound(whole.begin(), whole.end(), src,
+                                                    [](const WholeChain& w, std::size_t v) { return w.at < v; });
+                    if (c != whole.end() && c->at == src && !c->arcs && c->items <= coder.hist_.size() - k) {
+                        const WholeChain w = *c;  // take_whole adds to `whole`
+                        if (const char* bad = take_whole(k, w)) return fail(bad);
+                        k += w.items - 1;
+                        continue;
+                    }
+                }
+                // A copied line segment straight to take_line (as take does).
                 const Segment* seg = (e & ~kIndexMask) == kSegTag ? coder.segs_[e & kIndexMask] : nullptr;
-                const char* bad = seg && !is_arc(*seg, axes) ? take_line(*seg) : take(e);
+                const char* bad = seg && !is_arc(*seg, axes) ? take_line(*seg) : take(e, k);
                 if (bad) return fail(bad);
             }
             continue;
@@ -1393,7 +1519,8 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         if (io.failed || io.rans.failed || io.bits.failed) return fail("bad item");
         if (coder.hist_.size() > max_items) return fail("more items than declared");
         // A shape's segment is a line; start, end and arc items go through take.
-        const char* e = op >= kOpSucc && op < kOpMatch ? take_line(*coder.segs_.back()) : take(coder.hist_.back());
+        const char* e = op >= kOpSucc && op < kOpMatch ? take_line(*coder.segs_.back())
+                                                       : take(coder.hist_.back(), coder.hist_.size() - 1);
         if (e) return fail(e);
     }
     if (seen_segments != h.nsegments || seen_steps != h.nsteps) return fail("declared segment or step count does not match");

@@ -41,6 +41,10 @@ struct TableItemKeys {
 struct WindowBlock {
     std::uint64_t weight = 0;           ///< steps + chains
     SegmentItems items;                 ///< segment-model blocks; else empty
+    /// Decoder: a table block's decoded chains, one per chain of `items`
+    /// (a later table block's match that copies a whole chain copies its
+    /// steps); else empty.
+    std::vector<Chain> chains;
     std::vector<std::uint8_t> symbols;  ///< two-axis chain blocks: Freeman codes, 8 after each chain
     std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
     std::uint64_t first_symbol = 0;     ///< frame position of its first symbol (the frame history's)

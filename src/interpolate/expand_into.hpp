@@ -76,7 +76,7 @@ inline void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Ste
 // The fast path of the leading-axis profiles (eval8, grbl, marlin) on two
 // axes into o[0, L): false, and nothing written, when the phase `f0` is
 // outside its exact range and the run is not degenerate.
-inline bool leading_two_axis_into(const Point& delta, std::int64_t f0, Step* o) {
+[[gnu::always_inline]] inline bool leading_two_axis_into(const Point& delta, std::int64_t f0, Step* o) {
     const std::int64_t ax = std::llabs(delta[0]), ay = std::llabs(delta[1]);
     const bool x_leads = ax >= ay;  // the lowest index among the largest
     const std::int64_t l = x_leads ? ax : ay, s = x_leads ? ay : ax;
@@ -93,7 +93,7 @@ inline bool leading_two_axis_into(const Point& delta, std::int64_t f0, Step* o) 
 }
 
 /// expand_segment_into on two axes.
-inline bool expand_two_axis_into(Profile p, const Segment& seg, Step* out) {
+[[gnu::always_inline]] inline bool expand_two_axis_into(Profile p, const Segment& seg, Step* out) {
     switch (p) {
         case Profile::eval4: {
             const std::int64_t a = std::llabs(seg.delta[0]), b = std::llabs(seg.delta[1]), f0 = seg.phase[0];

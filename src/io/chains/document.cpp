@@ -19,15 +19,7 @@ namespace io {
 
 void append_int(std::string& out, std::int64_t v) {
     char buf[24];
-    char* e = buf + sizeof buf;
-    char* p = e;
-    std::uint64_t m = v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
-    do {
-        *--p = static_cast<char>('0' + m % 10);
-        m /= 10;
-    } while (m != 0);
-    if (v < 0) *--p = '-';
-    out.append(p, e);
+    out.append(buf, put_int(buf, v));
 }
 
 void append_number(std::string& out, std::int64_t v, Spelling sp) {

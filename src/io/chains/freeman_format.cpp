@@ -13,6 +13,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <tmmintrin.h>
 #endif
 
 #include "line_scanner.hpp"
@@ -432,12 +433,39 @@ public:
     Result<void> write(const Block& block, std::string& out) override;
 };
 
-bool append_codes(std::string& out, const Chain& c) {
-    const std::size_t n = c.steps.size(), at = out.size();
-    out.resize(at + n);
-    char* w = out.data() + at;
-    const Step* s = c.steps.data();
+#if defined(__SSE2__) && defined(__GNUC__)
+// Sixteen steps a round where the CPU has SSSE3 (a byte shuffle looks the
+// sixteen codes up at once): w[0, k) for the first k = 16·floor(n / 16)
+// steps; k, or SIZE_MAX when one of them is above 15 or has no code.
+// Checked once per call: high bytes or-ed, codes of zero (none) or-ed.
+[[gnu::target("ssse3")]] std::size_t codes_by_shuffle(const Step* s, std::size_t n, char* w) {
+    const __m128i table = _mm_setr_epi8(0, '0', 0, '4', '2', '1', 0, '3', 0, 0, 0, 0, '6', '7', 0, '5');
+    const __m128i none = _mm_setzero_si128();
+    __m128i high = none, bad = none;
     std::size_t i = 0;
+    for (; n - i >= 16; i += 16) {
+        const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + i));
+        const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + i + 8));
+        high = _mm_or_si128(high, _mm_or_si128(a, b));
+        const __m128i d = _mm_shuffle_epi8(table, _mm_packus_epi16(a, b));  // the high bit of 0xFF: 0
+        bad = _mm_or_si128(bad, _mm_cmpeq_epi8(d, none));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(w + i), d);
+    }
+    const __m128i over = _mm_and_si128(high, _mm_set1_epi16(static_cast<short>(0xFFF0)));
+    if (_mm_movemask_epi8(_mm_or_si128(bad, _mm_xor_si128(_mm_cmpeq_epi8(over, none), _mm_set1_epi8(-1)))) != 0)
+        return SIZE_MAX;
+    return i;
+}
+const bool kHasShuffle = __builtin_cpu_supports("ssse3");
+#endif
+
+// The Freeman digits of the n steps at s into w[0, n); false when a step
+// has none.
+bool codes_into(const Step* s, std::size_t n, char* w) {
+    std::size_t i = 0;
+#if defined(__SSE2__) && defined(__GNUC__)
+    if (kHasShuffle && n >= 16 && (i = codes_by_shuffle(s, n, w)) == SIZE_MAX) return false;
+#endif
     if constexpr (std::endian::native == std::endian::little) {
         // Four steps a round: one 64-bit load, one multiply that gathers the
         // four low nibbles into the top 16 bits (nibble k of lane k lands on
@@ -467,18 +495,38 @@ bool append_codes(std::string& out, const Chain& c) {
     return true;
 }
 
+// A chain's digits appended in pieces of up to 1 KiB made on the stack
+// (growing the string by resize() would write every byte twice: zeros,
+// then the digits).
+bool append_codes(std::string& out, const Chain& c) {
+    char buf[1024];
+    const Step* s = c.steps.data();
+    for (std::size_t i = 0, n = c.steps.size(); i < n; i += sizeof buf) {
+        const std::size_t k = std::min(sizeof buf, n - i);
+        if (!codes_into(s + i, k, buf)) return false;
+        out.append(buf, k);
+    }
+    return true;
+}
+
 void append_canonical_head(std::string& out, const Chain& c) {
-    append_int(out, c.start[0]);
-    out.push_back(' ');
-    append_int(out, c.start[1]);
-    if (!c.steps.empty()) out.push_back(' ');
+    char buf[48];  // "X Y ": one append
+    char* w = put_int(buf, c.start[0]);
+    *w++ = ' ';
+    w = put_int(w, c.start[1]);
+    if (!c.steps.empty()) *w++ = ' ';
+    out.append(buf, w);
 }
 
 Result<void> FreemanRenderer::write(const Block& b, std::string& out) {
     const auto& ch = b.chains;
     const std::size_t n = ch.size();
-    for (const Chain& c : ch)
+    std::size_t bytes = out.size();  // room for the canonical lines: one growth of `out` at most
+    for (const Chain& c : ch) {
         if (c.axes != 2) return corrupt("freeman", "a chain that is not two-axis");
+        bytes += c.steps.size() + 48;
+    }
+    out.reserve(bytes);
     std::size_t i = 0;
     if (b.continues) {
         if (n == 0) return corrupt("freeman", "a continued block without chains");

@@ -432,35 +432,6 @@ private:
     Point p_{};
 };
 
-// Writes the canonical decimal spelling of v at w; returns its end. The
-// digits are made right to left in a scratch array and moved with one
-// fixed-size copy of 20 bytes: w must have room for 21.
-char* put_int(char* w, std::int64_t v) {
-    static constexpr char kPairs[] =
-        "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-        "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-        "8081828384858687888990919293949596979899";
-    std::uint64_t m = v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
-    if (v < 0) *w++ = '-';
-    char tmp[40] = {};
-    char* const e = tmp + 20;
-    char* d = e;
-    while (m >= 100) {  // two digits per division
-        const auto r = static_cast<std::size_t>(m % 100);
-        m /= 100;
-        *--d = kPairs[2 * r + 1];
-        *--d = kPairs[2 * r];
-    }
-    if (m >= 10) {
-        *--d = kPairs[2 * m + 1];
-        *--d = kPairs[2 * m];
-    } else {
-        *--d = static_cast<char>('0' + m);
-    }
-    std::memcpy(w, d, 20);  // constant size: a few moves, no call; d + 20 <= tmp + 40
-    return w + (e - d);
-}
-
 // Point lines in a style, gathered in a buffer and appended to `out` a few
 // kilobytes at a time (a call per line was most of the rendering time).
 class LineWriter {
