@@ -1458,7 +1458,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             if (items) items->segments.push_back(seg);
         }
         if (items) items->counts.back() += static_cast<std::uint32_t>(nseg);
-        std::memcpy(steps.room(0, c.n), c.steps, c.n * sizeof(Step));
+        if (c.n != 0) std::memcpy(steps.room(0, c.n), c.steps, c.n * sizeof(Step));  // (an empty chain's steps may be null)
         chain_steps = c.n;
         return take(coder.hist_[at + c.items - 1], at + c.items - 1);
     };
