@@ -450,12 +450,13 @@ constexpr std::uint64_t kTimedPrefix = std::uint64_t{1} << 18;
 
 TimedCheck timed_check(const Block& block, const EncoderSettings& s) {
     TimedCheck c;
-    const Block prefix = step_count(block) > kTimedPrefix ? first_steps(block, kTimedPrefix) : Block{};
-    const Block& sample = step_count(block) > kTimedPrefix ? prefix : block;
+    const bool whole = step_count(block) <= kTimedPrefix;
+    const Block prefix = whole ? Block{} : first_steps(block, kTimedPrefix);
+    const Block& sample = whole ? block : prefix;
     const std::string tick = write_tick_block(sample), irq = write_interrupt_block(sample);
     if (tick.empty() || irq.empty()) return c;
     c.irq = irq.size() < tick.size();
-    if (&sample == &block) c.plain = c.irq ? irq : tick;
+    if (whole) c.plain = c.irq ? irq : tick;
     Cut segs;
     SegmentStats stats;
     if (!representable(sample, s.profile, sample.axes) ||

@@ -1282,13 +1282,14 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         std::size_t n;
     };
     std::vector<WholeChain> whole;
+    // The declared chains, within what the payload's size can plausibly hold.
+    const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
     {
         // Room for the declared items, within what the payload's size can
         // plausibly hold (a match of a few bits may copy many items).
         const std::size_t plausible = 64 * payload.size() + 1024;
         const auto segs = static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible));
         const std::size_t hist = segs + static_cast<std::size_t>(std::min<std::uint64_t>(2 * h.nchains, plausible));
-        const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         if (window) {
             coder.prime(*window, segs, hist, starts);
             if (expand) {
@@ -1296,7 +1297,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 // history positions prime() gave their items.
                 std::size_t at = 0, n = 0;
                 for (const auto& b : *window) n += b->chains.size();
-                whole.reserve(n + static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
+                whole.reserve(n + starts);
                 for (const auto& b : *window) {
                     const SegmentItems& w = b->items;
                     const bool kept = b->chains.size() == w.starts.size();
@@ -1313,7 +1314,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         }
         coder.shape_.reserve(std::min<std::size_t>(segs, 8 * payload.size()));
         coder.succ_.reserve(std::min<std::size_t>(segs, 8 * payload.size()) + 1);
-        if (expand) out.chains.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64)));
+        if (expand) out.chains.reserve(starts);
     }
     if (items) {
         std::vector<Segment> room = std::move(items->segments);  // a caller's spare memory, kept
@@ -1327,7 +1328,6 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         // the peak (rep.fc at -L 1: 100 of the decoder's 145 MB).
         const std::uint64_t plausible_segs = 8 * payload.size() + coder.segs_.size();
         items->segments.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(h.nsegments, plausible_segs)));
-        const auto starts = static_cast<std::size_t>(std::min<std::uint64_t>(h.nchains, 8 * payload.size() + 64));
         items->starts.reserve(starts);
         items->counts.reserve(starts);
     }

@@ -337,10 +337,13 @@ template <class Io>
 class TickCoder {
 public:
     /// `windows`: an interrupt block (subtype 1), whose B[a] follow the
-    /// axes per leader step (FORMAT.md 1.14); `coding`: which hashed
-    /// models the mixed codings name (v0 and v4 differ in coding 2).
+    /// axes per leader step (FORMAT.md 1.14); `coding`: with mixed
+    /// predictions, coding 2 leaves the sure decisions to their contexts
+    /// and names other hashed models in v0 and v4.
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding)
-        : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure) {}
+        : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure) {
+        if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
+    }
 
     /// A chain's start: every follower forgets.
     void start_chain() {
@@ -570,7 +573,6 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
         MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
-        io.sure = coding == TickCoding::mixed_sure ? kSure : 0;
         write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding);
         out += io.rc.finish();
     } else {
@@ -620,7 +622,6 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));
     }();
-    if constexpr (kMixedIo<Io>) io.sure = is(TickCoding::mixed_sure) ? kSure : 0;
     TickTables& t = *tables;
     TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding));
     start_output(out, expand, axes, std::move(*layout));
