@@ -200,9 +200,9 @@ std::string controller_log(std::uint32_t seed) {
 }
 
 // Tick blocks (and interrupt blocks, or only the subtype `only` when
-// given) of a one-frame version-2 file: its block records walked with the
-// library's varint reader.
-std::size_t tick_blocks(const std::string& frame, int only = -1) {
+// given; of any coding, or only `coding` when given) of a one-frame
+// version-2 file: its block records walked with the library's varint reader.
+std::size_t tick_blocks(const std::string& frame, int only = -1, int coding = -1) {
     wire::Cursor cur(std::string_view(frame).substr(8));  // after the frame header
     std::size_t n = 0;
     unsigned first = 0;
@@ -214,7 +214,8 @@ std::size_t tick_blocks(const std::string& frame, int only = -1) {
         if (!cur.bytes(static_cast<std::size_t>(csize) + 4, payload)) break;  // payload and block checksum
         const unsigned sub = static_cast<unsigned char>(payload[0]);
         if (type == stz::kExtended && (only < 0 ? sub == stz::kTickSubtype || sub == stz::kInterruptSubtype
-                                                : sub == static_cast<unsigned>(only)))
+                                                : sub == static_cast<unsigned>(only)) &&
+            (coding < 0 || (payload.size() > 1 && static_cast<unsigned char>(payload[1]) == static_cast<unsigned>(coding))))
             ++n;
     }
     return n;
@@ -290,6 +291,9 @@ TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
             auto z = compress(log, opt);
             ASSERT_TRUE(z.ok()) << z.error().message;
             EXPECT_GT(tick_blocks(*z), 1u) << "seed " << seed << " level " << level;
+            // Plain contexts at -L 1 and 2, the mixed coding 2 from 3.
+            const auto coding = static_cast<int>(level >= 3 ? TickCoding::mixed_sure : TickCoding::plain);
+            EXPECT_EQ(tick_blocks(*z, -1, coding), tick_blocks(*z)) << "seed " << seed << " level " << level;
             auto back = decompress(*z);
             ASSERT_TRUE(back.ok()) << back.error().message;
             EXPECT_EQ(*back, log) << "seed " << seed << " level " << level;

@@ -46,6 +46,9 @@ constexpr std::uint64_t kSmallBlockSteps = 1u << 16;
 // walks: more than kSegmentModelOnly per 1000 steps) also tries the step
 // model, which is 15-30 % smaller there than a table block.
 constexpr int kFastStepLevel = 3;
+// From this level on, a timed frame's tick and interrupt blocks are coded
+// with mixed predictions but for the sure decisions (tick coding 2).
+constexpr int kMixedTickLevel = 3;
 
 using Cut = std::vector<std::vector<Segment>>;
 
@@ -1101,13 +1104,14 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     }
     // Timed frames at every level: the tick block (type 7 subtype 2) or
     // the interrupt block (subtype 1), the one the check found smaller,
-    // kept when smaller than the segment-based blocks; from the strong
-    // level with mixed predictions but for the sure decisions (coding 2),
-    // 13-23 % smaller than the plain coding on every block of the timed
-    // streams measured (docs/benchmarks.md "Timed streams at -L 19"), the
-    // plain one where the mixed one cannot code the block.
+    // kept when smaller than the segment-based blocks; from kMixedTickLevel
+    // with mixed predictions but for the sure decisions (coding 2), 13-23 %
+    // smaller than the plain coding on every block of the timed streams
+    // measured and about half as fast to decode (docs/benchmarks.md "Timed
+    // streams at the default level"), the plain one where the mixed one
+    // cannot code the block.
     if (s.timed && can_represent) {
-        const TickCoding coding = s.level >= kStrongLevel ? TickCoding::mixed_sure : TickCoding::plain;
+        const TickCoding coding = s.level >= kMixedTickLevel ? TickCoding::mixed_sure : TickCoding::plain;
         auto write = [&](TickCoding c) {
             return timed.irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
         };
