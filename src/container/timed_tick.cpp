@@ -114,7 +114,10 @@ private:
 /// broke against the length of the segment before.
 class Follower {
 public:
-    void reset() {
+    /// Empties the follower; `restart`: a line that breaks restarts at its
+    /// last 1 (the coding flag kTickRestart).
+    void reset(bool restart) {
+        restart_ = restart;
         line_.reset();
         hist_.clear();
         start_ = 0;
@@ -186,9 +189,9 @@ public:
         recent_ = (recent_ << 1) | static_cast<std::uint64_t>(letter);
         if ((adm >> letter) & 1) {
             line_.read(letter);
-            if (line_.length() >= kMaxLine) rebuild();
+            if (line_.length() >= kMaxLine) rebuild(false);
         } else {
-            rebuild();
+            rebuild(restart_);
             period_ = since_break_;
             since_break_ = 0;
         }
@@ -212,8 +215,13 @@ public:
 
 private:
     // The segment becomes the longest straight suffix of at most kRebuild
-    // letters (a word is straight iff its reverse is: it is read backward).
-    void rebuild() {
+    // letters (a word is straight iff its reverse is: it is read backward);
+    // with `at_one`, of those that start no earlier than the last 1. A
+    // controller changes an axis's rate between two of its steps: after a
+    // break the letters before the last step belong to the old rate, and a
+    // line that kept them would break again (on the timed streams of
+    // docs/benchmarks.md five times as often as the rate changed).
+    void rebuild(bool at_one) {
         // Backward, a run at a time: where a run is not admitted whole, the
         // longest admitted part of it (admission only shrinks along a run).
         back_.reset();
@@ -237,6 +245,11 @@ private:
             i -= static_cast<std::size_t>(good);
             break;
         }
+        if (at_one) {
+            std::size_t one = end;
+            while (one > i && hist_[one - 1] != 1) --one;
+            if (one > i) i = one - 1;
+        }
         line_.reset();
         start_ = i;
         for (std::size_t j = i; j < end;) {
@@ -247,6 +260,7 @@ private:
         }
     }
 
+    bool restart_ = false;
     Line line_, back_;
     std::vector<std::uint8_t> hist_;
     std::size_t start_ = 0;
@@ -339,16 +353,18 @@ public:
     /// `windows`: an interrupt block (subtype 1), whose B[a] follow the
     /// axes per leader step (FORMAT.md 1.14); `coding`: with mixed
     /// predictions, coding 2 leaves the sure decisions to their contexts
-    /// and names other hashed models in v0 and v4.
-    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding)
-        : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure) {
+    /// and names other hashed models in v0 and v4; `restart`: the
+    /// followers' lines restart at their last 1 when they break.
+    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, bool restart)
+        : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
+          restart_(restart) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
     }
 
     /// A chain's start: every follower forgets.
     void start_chain() {
-        for (auto& f : axis_) f.reset();
-        for (auto& f : bres_) f.reset();
+        for (auto& f : axis_) f.reset(restart_);
+        for (auto& f : bres_) f.reset(restart_);
         moved_.fill(0);
         sign_.fill(1);
         since_.fill(0);
@@ -378,7 +394,7 @@ public:
         }
         if (order[0] != leader_) {
             leader_ = order[0];
-            for (auto& f : bres_) f.reset();
+            for (auto& f : bres_) f.reset(restart_);
             moved_.fill(0);
         }
         unsigned m = 0, n = 0;
@@ -510,7 +526,8 @@ private:
     TickTables& t_;
     int minor_;
     bool windows_;
-    bool sure_;  // coding 2
+    bool sure_;     // coding 2
+    bool restart_;  // the coding flag kTickRestart
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -528,9 +545,9 @@ namespace {
 
 // The chains of `block` (every step advancing time) coded through `io`.
 template <class Io>
-void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding) {
+void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, bool restart) {
     const int axes = block.axes;
-    TickCoder<Io> coder(io, t, axes, windows, coding);
+    TickCoder<Io> coder(io, t, axes, windows, coding, restart);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -553,7 +570,7 @@ void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCo
     }
 }
 
-std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned subtype) {
+std::string write_ticks_payload(const Block& block, TickCoding coding, bool restart, unsigned subtype) {
     const int axes = block.axes;
     if (axes < 2 || axes > kMaxAxes) return {};
     std::uint64_t nsteps = 0;
@@ -564,7 +581,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     }
     std::string out;
     put_u8(out, subtype);
-    put_u8(out, static_cast<unsigned>(coding));
+    put_u8(out, static_cast<unsigned>(coding) | (restart ? kTickRestart : 0));
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
@@ -573,11 +590,11 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
         MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, restart);
         out += io.rc.finish();
     } else {
         EncIo io;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, restart);
         out += io.rc.finish();
     }
     return out;
@@ -585,12 +602,12 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
 
 }  // namespace
 
-std::string write_tick_block(const Block& block, TickCoding coding) {
-    return write_ticks_payload(block, coding, kTickSubtype);
+std::string write_tick_block(const Block& block, TickCoding coding, bool restart) {
+    return write_ticks_payload(block, coding, restart, kTickSubtype);
 }
 
-std::string write_interrupt_block(const Block& block, TickCoding coding) {
-    return write_ticks_payload(block, coding, kInterruptSubtype);
+std::string write_interrupt_block(const Block& block, TickCoding coding, bool restart) {
+    return write_ticks_payload(block, coding, restart, kInterruptSubtype);
 }
 
 namespace {
@@ -603,7 +620,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
     const bool windows = subtype == kInterruptSubtype;
-    const auto is = [&](TickCoding c) { return coding == static_cast<unsigned>(c); };
+    const auto is = [&](TickCoding c) { return (coding & ~kTickRestart) == static_cast<unsigned>(c); };
     if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));
@@ -623,7 +640,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding));
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickRestart), (coding & kTickRestart) != 0);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
@@ -670,7 +687,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
                              const std::string& where) {
     // The coding byte picks the coder (an unknown one is reported by the plain reader).
-    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) : 0;
+    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~kTickRestart : 0;
     if (coding == static_cast<unsigned>(TickCoding::mixed) || coding == static_cast<unsigned>(TickCoding::mixed_sure))
         return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
     return read_ticks<DecIo>(payload, axes, expand, out, counts, where);

@@ -29,15 +29,20 @@ inline constexpr unsigned kTickBlock = 8;
 /// predictions but for the bits whose context is sure (mix_sure(), the
 /// strong levels' choice).
 enum class TickCoding : unsigned { plain = 0, mixed = 1, mixed_sure = 2 };
+/// Flag of the coding byte, added to a TickCoding: a follower's line that
+/// breaks restarts at its last 1 (docs/FORMAT.md 1.13, "Rebuild"). The
+/// encoder sets it on every block; the blocks without it decode as before.
+inline constexpr unsigned kTickRestart = 4;
 
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain);
+/// `restart`: the flag kTickRestart.
+std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, bool restart = true);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md
 /// 1.14); empty when it cannot be one (as write_tick_block).
-std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain);
+std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain, bool restart = true);
 
 /// Parses a tick-block or interrupt-block payload into `out` (when `expand`) and adds its
 /// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit
