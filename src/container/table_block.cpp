@@ -1332,6 +1332,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         bool arcs;                      // holds an arc item (those go through take)
         const Step* steps;              // its steps (a chain's vector keeps its buffer when moved)
         std::size_t n;
+        const Segment* segs;            // a window chain's segments, in order (its block's items); else null
     };
     std::vector<WholeChain> whole;
     // The declared chains, within what the payload's size can plausibly hold.
@@ -1353,10 +1354,12 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 for (const auto& b : *window) {
                     const SegmentItems& w = b->items;
                     const bool kept = b->chains.size() == w.starts.size();
+                    const Segment* segs = w.segments.data();
                     for (std::size_t k = 0; k < w.starts.size(); ++k) {
                         const std::size_t items_k = std::size_t{w.counts[k]} + 2;
-                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size()});
+                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size(), segs});
                         at += items_k;
+                        segs += w.counts[k];
                     }
                 }
             }
@@ -1464,7 +1467,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 chain.steps.assign(from, from + chain_steps);
                 out.chains.push_back(std::move(chain));
                 const std::vector<Step>& done = out.chains.back().steps;
-                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size()});
+                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size(), nullptr});
             }
         } else {
             if (!in_chain) return "segment outside a chain";
@@ -1500,8 +1503,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     };
     // Takes the copied chain at history position `at`, the same items as the
     // earlier chain `c` (no arc among them): its start and end as take()
-    // does, its segments counted and entered into the block's items, its
-    // steps copied from `c`'s.
+    // does, its segments counted and entered into the block's items (a
+    // window chain's as one range, without a look-up each), its steps
+    // copied from `c`'s.
     auto take_whole = [&](std::size_t at, const WholeChain& c) __attribute__((flatten)) -> const char* {
         if (const char* bad = take(coder.hist_[at], at)) return bad;
         const std::size_t nseg = c.items - 2;
@@ -1509,11 +1513,19 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             return "more segments or steps than declared";
         seen_segments += nseg;
         seen_steps += c.n;
-        const std::uint32_t* e = coder.hist_.data() + at + 1;
-        for (std::size_t q = 0; q < nseg; ++q) {
-            const Segment& seg = *coder.segs_[e[q] & kIndexMask];
-            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
-            if (items) items->segments.push_back(seg);
+        if (c.segs) {
+            // A window chain's segments: in one piece in its block's items.
+            for (std::size_t q = 0; q < nseg; ++q)
+                for (int a = 0; a < axes; ++a) pos[a] += c.segs[q].delta[a];
+            if (items) items->segments.insert(items->segments.end(), c.segs, c.segs + nseg);
+        } else {
+            // One of the block's: its segments through the history.
+            const std::uint32_t* e = coder.hist_.data() + at + 1;
+            for (std::size_t q = 0; q < nseg; ++q) {
+                const Segment& seg = *coder.segs_[e[q] & kIndexMask];
+                for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+                if (items) items->segments.push_back(seg);
+            }
         }
         if (items) items->counts.back() += static_cast<std::uint32_t>(nseg);
         chain_from = c.steps;
