@@ -151,6 +151,35 @@ TEST(ContainerTable, WholeChainMatchesCopyTheDecodedSteps) {
     expect_decodes_to(write_table_block(four2, Profile::grbl, four2_segs), four2, Profile::grbl, four2_segs);
 }
 
+// A block decoded with a window that holds the same block (as the decoder
+// holds it: its decoded items and chains) copies its chains whole from the
+// window; the items it gives the next block's window are the ones it gives
+// decoded alone (each copied chain's segments, in order, whatever the path).
+TEST(ContainerTable, WholeChainsFromTheWindowGiveTheBlocksItems) {
+    const Block b = corpus_block("glyphs/dejavu-8.fc", 30000);
+    const Cut segs = greedy_cut(b, Profile::grbl);
+    auto w = std::make_shared<WindowBlock>();
+    Block alone;
+    BlockCounts counts;
+    auto r = read_table_block(write_table_block(b, Profile::grbl, segs), Profile::grbl, b.axes, true, alone, counts,
+                              "test", nullptr, &w->items, kTable);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    w->chains = alone.chains;
+    const WindowView window{w};
+    unsigned type = 0;
+    const std::string payload =
+        write_table_block(b, Profile::grbl, segs, TableEffort{}, &window, nullptr, nullptr, &type);
+    Block again;
+    SegmentItems items;
+    r = read_table_block(payload, Profile::grbl, b.axes, true, again, counts, "test", &window, &items, type);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    EXPECT_EQ(again.chains, b.chains);
+    EXPECT_EQ(items.starts, w->items.starts);
+    EXPECT_EQ(items.counts, w->items.counts);
+    EXPECT_EQ(items.segments, w->items.segments);
+    EXPECT_LT(payload.size() * 20, write_table_block(b, Profile::grbl, segs).size());  // (copied, not coded)
+}
+
 // The item keys and canonical segments an encoder keeps (a block's first
 // pass, handed to its window contribution) are the ones a later block would
 // make from the window's items, and coding with them gives the same bytes

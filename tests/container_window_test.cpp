@@ -13,6 +13,7 @@
 #include "../src/container/block_codec.hpp"
 #include "../src/common/bytes.hpp"
 #include "../src/container/memory_io.hpp"
+#include "../src/container/window.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 
@@ -156,6 +157,49 @@ TEST(ContainerWindow, AStepModelBlockAfterBlocksOfOtherTypesFindsTheirSteps) {
     ASSERT_TRUE(info.ok()) << info.error().message;
     EXPECT_GT(info->step_model_blocks, 0u);
     EXPECT_GT(info->table_blocks + info->segment_model_blocks, 0u);
+}
+
+// The encoder keeps a table block's chains with its window contribution, as
+// the decoder does: the proof of a later table block copies whole chains
+// from them. A + B + A in blocks large enough to be table blocks at level 1,
+// the second A a block after the first.
+TEST(ContainerWindow, TableBlocksProvedOnTheChainsOfTheWindowsTableBlocks) {
+    const std::string a = chains_text(11, 1200), b = chains_text(12, 300);
+    CompressOptions opt = window_options(18);
+    opt.level = 1;
+    opt.block_steps = 1 << 16;
+    const std::string z = must_compress(a + b + a, opt);
+    auto info = inspect_stream(stz::memory_reader(z));
+    ASSERT_TRUE(info.ok()) << info.error().message;
+    EXPECT_GE(info->table_blocks, 2u);
+}
+
+// A table block's chains kept with its contribution are lent to the
+// step model when a later block wants the window's symbols: the symbols and
+// starts are the block's own, and the chains stay with the contribution.
+TEST(ContainerWindow, ChainsKeptWithAContributionAreLentForItsSymbols) {
+    Block b;
+    for (int i = 0; i < 3; ++i) {
+        Chain c;
+        c.axes = 2;
+        c.start = {10 * i, -i};
+        for (int k = 0; k < 5 + i; ++k) c.steps.push_back(freeman_to_step((i + k * k) % 8));
+        b.chains.push_back(std::move(c));
+    }
+    stz::WindowBlock direct, kept, own;
+    stz::add_steps(direct, b);
+    ASSERT_FALSE(direct.symbols.empty());
+    kept.chains = b.chains;
+    Block none;  // the block once its chains went with the contribution
+    stz::add_steps_lent(kept, none);
+    EXPECT_EQ(kept.symbols, direct.symbols);
+    EXPECT_EQ(kept.starts, direct.starts);
+    EXPECT_EQ(kept.chains, b.chains);
+    EXPECT_TRUE(none.chains.empty());
+    Block mine = b;  // a block that has its chains
+    stz::add_steps_lent(own, mine);
+    EXPECT_EQ(own.symbols, direct.symbols);
+    EXPECT_EQ(mine.chains, b.chains);
 }
 
 TEST(ContainerWindow, ThreadCountDoesNotChangeTheBytes) {

@@ -145,7 +145,8 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     // Chain blocks in the window whose step-model symbols are not made yet:
     // they are made only when a block's second pass may read them (at the
     // fast levels a frame of table blocks never does). Until then the
-    // block's chains are kept (2 bytes a step where the symbols take 1).
+    // block's chains are kept (2 bytes a step where the symbols take 1; a
+    // table block's with its contribution, see the end of flush_batch).
     struct PendingSymbols {
         std::shared_ptr<WindowBlock> w;
         Block* block;                  // the job's block, then `kept`
@@ -201,7 +202,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         for (std::size_t i = 0; i < batch.size() && !symbols_wanted; ++i)
             symbols_wanted = wants_window_steps(batch[i], s, views[i]);
         if (symbols_wanted) {
-            for (PendingSymbols& p : pending_symbols) add_steps(*p.w, *p.block);
+            for (PendingSymbols& p : pending_symbols) add_steps_lent(*p.w, *p.block);
             pending_symbols.clear();
             sync_frame_steps(views[0]);
         }
@@ -240,6 +241,11 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
             info.compressed_bytes += j.record.size();
             if (auto r = out(j.record); !r) return r;
         }
+        // A table block's chains stay with its contribution, as the decoder
+        // keeps them: the proof of a later table block copies whole chains
+        // from them as the decoder does.
+        for (BlockJob& j : batch)
+            if (j.type == kTable && j.contribution) j.contribution->chains = std::move(j.block.chains);
         for (PendingSymbols& p : pending_symbols)
             if (!p.kept) {
                 p.kept = std::make_unique<Block>();

@@ -376,12 +376,7 @@ private:
             if (!held) continue;  // cannot happen: the window holds at most kMaxWindowBlocks
             WindowBlock& w = *held->contribution;
             w.first_symbol = step_history_end(*steps_);
-            // A table block's chains are with its contribution: lent for this.
-            Block& block = held->block;
-            const bool lent = block.chains.empty() && !w.chains.empty();
-            if (lent) block.chains.swap(w.chains);
-            add_steps(w, block);
-            if (lent) w.chains.swap(block.chains);
+            add_steps_lent(w, held->block);
             step_history_add(*steps_, w);
             w.symbols = {};
             w.starts = {};

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -204,6 +205,40 @@ struct UninitAlloc : std::allocator<T> {
     }
 };
 
+// Arrays of the items' history entries and of pointers to their segments
+// and starts, written in place after a resize (no zeroing first).
+using Entries = std::vector<std::uint32_t, UninitAlloc<std::uint32_t>>;
+template <class T>
+using Pointers = std::vector<const T*, UninitAlloc<const T*>>;
+
+// The history entries of a window block's items at `h` (docs/FORMAT.md
+// "Table block"): per chain its start, its segments and its end, the starts
+// numbered from `first_start` and the segments from `first_seg` (both
+// advanced). Returns the end of the entries.
+std::uint32_t* window_entries(const SegmentItems& w, std::uint32_t& first_seg, std::uint32_t& first_start,
+                              std::uint32_t* h) {
+    std::uint32_t si = first_seg, ci = first_start;  // (in registers: `h` might alias the arguments)
+    for (std::size_t k = 0; k < w.starts.size(); ++k) {
+        *h++ = kStartTag | ci++;
+        const std::uint32_t cnt = w.counts[k];
+#pragma GCC unroll 4
+        for (std::uint32_t q = 0; q < cnt; ++q) h[q] = kSegTag | (si + q);
+        h += cnt;
+        si += cnt;
+        *h++ = kEndTag;
+    }
+    first_seg = si;
+    first_start = ci;
+    return h;
+}
+
+// Pointers to the `m` objects at `first`, at `to`.
+template <class T>
+void pointers_to(const T* first, std::size_t m, const T** to) {
+#pragma GCC unroll 4
+    for (std::size_t q = 0; q < m; ++q) to[q] = first + q;
+}
+
 // Segments that never move once stored, in chunks of 64, 128, ... 4096
 // (a deque's nodes hold five segments each: an allocation per five).
 class SegmentStore {
@@ -310,10 +345,11 @@ public:
     std::int64_t grid_ = 1;
     // Decoded content: every segment and chain start of the block, and the
     // history of items over them.
-    std::vector<const Segment*, UninitAlloc<const Segment*>> segs_;  // into own_ or the window's items
+    Pointers<Segment> segs_;  // into own_ or the window's items
     SegmentStore own_;
-    std::vector<Point> starts_;
-    std::vector<std::uint32_t, UninitAlloc<std::uint32_t>> hist_;
+    Pointers<Point> starts_;        // into own_starts_ or the window's items
+    std::deque<Point> own_starts_;  // (its elements never move)
+    Entries hist_;
     // Shapes: id -> index in segs_ of the segment coded in full.
     std::vector<std::uint32_t> shape_;
     std::vector<SuccList> succ_;  // by id + 1 (0: none)
@@ -353,39 +389,28 @@ public:
         segs_.resize(n);
         hist_.resize(n + 2 * c);
         starts_.resize(c);
-        const Segment** sp = segs_.data();
         std::uint32_t* hp = hist_.data();
         std::uint32_t si = 0, ci = 0;
         for (const auto& b : window) {
             const SegmentItems& w = b->items;
-            const Segment* seg = w.segments.data();
-            const std::size_t m = w.segments.size();
-#pragma GCC unroll 4
-            for (std::size_t q = 0; q < m; ++q) sp[si + q] = seg + q;
-            std::copy(w.starts.begin(), w.starts.end(), starts_.begin() + ci);
-            for (std::size_t k = 0; k < w.starts.size(); ++k) {
-                *hp++ = kStartTag | ci++;
-                const std::uint32_t cnt = w.counts[k];
-#pragma GCC unroll 4
-                for (std::uint32_t q = 0; q < cnt; ++q) hp[q] = kSegTag | (si + q);
-                hp += cnt;
-                si += cnt;
-                *hp++ = kEndTag;
-            }
+            pointers_to(w.segments.data(), w.segments.size(), segs_.data() + si);
+            pointers_to(w.starts.data(), w.starts.size(), starts_.data() + ci);
+            hp = window_entries(w, si, ci, hp);
         }
     }
 
     // The encoder's prime(): the window's items as the encoder lists them
     // (the same history entries over the same segment and start indices),
     // with its segments in canonical form (its cuts may not be canonical).
-    void prime_from(const std::vector<const Segment*>& segs, const std::vector<std::uint32_t>& items,
+    void prime_from(const Pointers<Segment>& segs, const Entries& items,
                     const std::vector<Point>& starts, std::size_t nsegs, std::size_t nitems, std::size_t nstarts,
                     std::size_t more_segs, std::size_t more_items) {
         segs_.reserve(nsegs + more_segs);
         hist_.reserve(nitems + more_items);
         segs_.assign(segs.begin(), segs.begin() + static_cast<std::ptrdiff_t>(nsegs));
         hist_.assign(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(nitems));
-        starts_.assign(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(nstarts));
+        starts_.resize(nstarts);
+        pointers_to(starts.data(), nstarts, starts_.data());
     }
 
     bool fail(const char* what) {
@@ -415,7 +440,7 @@ public:
             const std::uint64_t v = code_uint(kTStart + (i != 0), Io::kDecode ? 0 : zig(want[i] / grid_));
             delta[i] = static_cast<std::int64_t>(static_cast<std::uint64_t>(unzig(v)) * static_cast<std::uint64_t>(grid_));
         }
-        starts_.push_back(delta);
+        starts_.push_back(&own_starts_.emplace_back(delta));
         hist_.push_back(kStartTag | static_cast<std::uint32_t>(starts_.size() - 1));
         prev_shape_ = kNone;
         prev_op_ = kAfterStart;
@@ -678,6 +703,11 @@ public:
     return h * 0xBF58476D1CE4E5B9ull;
 }
 
+// The match finder's hash of the keys of three items in a row.
+[[gnu::always_inline]] inline std::uint64_t hash_of_three(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+    return mix(mix(a, b), c);
+}
+
 // Match key of an item: the tag, then every total and (a segment's) every
 // phase mixed in, unused ones included (written out, and inline).
 [[gnu::always_inline]] inline std::uint64_t key_of(std::uint32_t tag, const Point& d, const std::array<std::int64_t, kMaxAxes - 1>* ph) {
@@ -885,20 +915,24 @@ const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, Tabl
         if (made && made->canon.size() == w.segments.size() &&
             made->keys.size() == w.segments.size() + 2 * w.starts.size()) {
             t = std::move(*made);
-            return;
-        }
-        t.canon.reserve(w.segments.size());
-        t.keys.reserve(w.segments.size() + 2 * w.starts.size());
-        LineKeys line_keys;
-        std::size_t k = 0;
-        for (std::size_t c = 0; c < w.starts.size(); ++c) {
-            t.keys.push_back(key_of(1, w.starts[c], nullptr));
-            for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
-                t.keys.push_back(axes == 2 ? line_keys(t.canon.back()) : key_of(0, t.canon.back().delta, &t.canon.back().phase));
+        } else {
+            t.canon.reserve(w.segments.size());
+            t.keys.reserve(w.segments.size() + 2 * w.starts.size());
+            LineKeys line_keys;
+            std::size_t k = 0;
+            for (std::size_t c = 0; c < w.starts.size(); ++c) {
+                t.keys.push_back(key_of(1, w.starts[c], nullptr));
+                for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
+                    canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
+                    t.keys.push_back(axes == 2 ? line_keys(t.canon.back()) : key_of(0, t.canon.back().delta, &t.canon.back().phase));
+                }
+                t.keys.push_back(2);
             }
-            t.keys.push_back(2);
         }
+        // Made once here, not by every block whose window holds this one.
+        const std::vector<std::uint64_t>& keys = t.keys;
+        t.hashes.resize(keys.size() < 2 ? 0 : keys.size() - 2);
+        for (std::size_t i = 0; i < t.hashes.size(); ++i) t.hashes[i] = hash_of_three(keys[i], keys[i + 1], keys[i + 2]);
     });
     return b.table_keys;
 }
@@ -910,8 +944,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     BlockHead h;
     h.nchains = block.chains.size();
     // The items with their keys.
-    std::vector<std::uint32_t> items;  // as history entries: index into cs / deltas
-    std::vector<const Segment*> cs;    // canonical segments: the window's (kept with it), then the block's
+    Entries items;         // as history entries: index into cs / deltas
+    Pointers<Segment> cs;  // canonical segments: the window's (kept with it), then the block's
     std::vector<Point> deltas;
     std::vector<std::uint64_t> keys;
     std::size_t own_segs = 0;
@@ -930,20 +964,20 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         keys.reserve(nw + own_items);
         cs.reserve(ns + own_segs);
         deltas.reserve(nc + block.chains.size());
+        // The window's entries and segment pointers written in place.
+        items.resize(nw);
+        cs.resize(ns);
     }
     if (window) {
+        std::uint32_t* hp = items.data();
+        std::uint32_t si = 0, di = 0;
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
             const TableItemKeys& t = window_keys(*b, p, axes);
-            auto si = static_cast<std::uint32_t>(cs.size()), di = static_cast<std::uint32_t>(deltas.size());
-            for (const Segment& c : t.canon) cs.push_back(&c);
+            pointers_to(t.canon.data(), t.canon.size(), cs.data() + si);
             deltas.insert(deltas.end(), w.starts.begin(), w.starts.end());
             keys.insert(keys.end(), t.keys.begin(), t.keys.end());
-            for (std::size_t c = 0; c < w.starts.size(); ++c) {
-                items.push_back(kStartTag | di++);
-                for (std::uint32_t q = 0; q < w.counts[c]; ++q) items.push_back(kSegTag | si++);
-                items.push_back(kEndTag);
-            }
+            hp = window_entries(w, si, di, hp);
         }
     }
     const std::size_t first = items.size(), first_seg = cs.size(), first_start = deltas.size();
@@ -956,7 +990,8 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     {
         auto si = static_cast<std::uint32_t>(cs.size());  // the block's first segment
         if (mine) {
-            for (const Segment& c : mine->canon) cs.push_back(&c);
+            cs.resize(si + mine->canon.size());
+            pointers_to(mine->canon.data(), mine->canon.size(), cs.data() + si);
             keys.insert(keys.end(), mine->keys.begin(), mine->keys.end());
         } else {
             fresh.reserve(own_segs);  // never grows past: cs points into it
@@ -1019,16 +1054,19 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         return l;
     };
 
-    // One coding of the items, with minor totals raw or predicted.
+    // One coding of the items, with minor totals raw or predicted: its
+    // symbols and extra bits, and the method of its arcs (-1: none).
     struct Pass {
         EncSide io;
-        TableCoder<EncSide> coder;
-        Pass(Profile p, int axes) : coder(io, p, axes) {}
+        bool raw_minors = false;
+        int arc_method = -1;
     };
-    auto run = [&](bool raw_minors) {
-    auto pass = std::make_unique<Pass>(p, axes);
+    // `axes_tag`: the coder's kAxes, 2 on two axes (the decoder's coder there).
+    auto run = [&](bool raw_minors, auto axes_tag) {
+    auto pass = std::make_unique<Pass>();
+    pass->raw_minors = raw_minors;
     EncSide& io = pass->io;
-    TableCoder<EncSide>& coder = pass->coder;
+    TableCoder<EncSide, decltype(axes_tag)::value> coder(io, p, axes);
     coder.raw_minors_ = raw_minors;
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (window) {
@@ -1047,7 +1085,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
     std::vector<std::uint32_t> table(std::size_t{1} << hash_bits, 0);
     auto hash3 = [&](std::size_t i) {
-        return static_cast<std::size_t>(mix(mix(keys[i], keys[i + 1]), keys[i + 2]) >> (64 - hash_bits));
+        return static_cast<std::size_t>(hash_of_three(keys[i], keys[i + 1], keys[i + 2]) >> (64 - hash_bits));
     };
     auto insert = [&](std::size_t i) {
         if (i + 3 <= n) table[hash3(i)] = static_cast<std::uint32_t>(i + 1);
@@ -1056,7 +1094,17 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     const std::size_t min_rep = static_cast<std::size_t>(std::max(1, effort.min_rep_match));
     const std::size_t search = static_cast<std::size_t>(std::clamp(effort.recent_search, 0, static_cast<int>(kRecent)));
 
-    for (std::size_t i = 0; i < first; ++i) insert(i);
+    if (window) {
+        // The window's entries in order, by the hashes kept with their
+        // blocks; the last two of a block read the next block's keys.
+        std::size_t i = 0;
+        for (const auto& b : *window) {
+            const TableItemKeys& t = window_keys(*b, p, axes);
+            for (const std::uint64_t v : t.hashes)
+                table[static_cast<std::size_t>(v >> (64 - hash_bits))] = static_cast<std::uint32_t>(++i);
+            for (const std::size_t end = i + t.keys.size() - t.hashes.size(); i < end; ++i) insert(i);
+        }
+    }
     for (std::size_t i = first; i < n;) {
         // A match: a repeat offset first, then the hash candidate.
         std::size_t len = 0, off = 0;
@@ -1155,10 +1203,15 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         }
         ++i;
     }
+    pass->arc_method = coder.arc_method_;
     return pass;
     };
+    auto code = [&](bool raw_minors) {
+        return axes == 2 ? run(raw_minors, std::integral_constant<int, 2>{})
+                         : run(raw_minors, std::integral_constant<int, 0>{});
+    };
     const bool try_raw = effort.minors != MinorCoding::predicted;
-    auto pass = run(try_raw);
+    auto pass = code(try_raw);
     if (effort.minors == MinorCoding::smaller) {
         // The other coding's minor tables and extra bits, estimated from the
         // symbols this pass saw, against this pass's.
@@ -1169,17 +1222,16 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             const auto& a = io.alt_minor[static_cast<std::size_t>(c)];
             other += table_bytes(std::vector<std::uint32_t>(a.begin(), a.end()));
         }
-        if (other < coded) pass = run(!try_raw);
+        if (other < coded) pass = code(!try_raw);
     }
     EncSide& io = pass->io;
-    TableCoder<EncSide>& coder = pass->coder;
 
     std::string out;
-    if (coder.raw_minors_) {
+    if (pass->raw_minors) {
         put_u8(out, kTableSubtype);
         put_u8(out, kTableRawMinors);
     }
-    if (type) *type = coder.raw_minors_ ? kExtended : kTable;
+    if (type) *type = pass->raw_minors ? kExtended : kTable;
     put_varint(out, h.nchains);
     put_varint(out, h.nsegments);
     put_varint(out, h.nsteps);
@@ -1191,10 +1243,10 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         for (auto c : io.count[static_cast<std::size_t>(t)]) used |= std::uint64_t{c != 0} << t;
     // A block that codes arcs: the flag, the method byte, and operation
     // tables of 92 symbols; any other block is written as before arcs were.
-    const bool arcs = coder.arc_method_ >= 0;
+    const bool arcs = pass->arc_method >= 0;
     if (arcs) used |= std::uint64_t{1} << kTArcFlag;
     put_varint(out, used);
-    if (arcs) put_u8(out, static_cast<unsigned>(coder.arc_method_));
+    if (arcs) put_u8(out, static_cast<unsigned>(pass->arc_method));
     for (int t = 0; t < kTables; ++t)
         if ((used >> t) & 1) {
             std::vector<std::uint32_t>& count = io.count[static_cast<std::size_t>(t)];
@@ -1280,6 +1332,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         bool arcs;                      // holds an arc item (those go through take)
         const Step* steps;              // its steps (a chain's vector keeps its buffer when moved)
         std::size_t n;
+        const Segment* segs;            // a window chain's segments, in order (its block's items); else null
     };
     std::vector<WholeChain> whole;
     // The declared chains, within what the payload's size can plausibly hold.
@@ -1301,10 +1354,12 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
                 for (const auto& b : *window) {
                     const SegmentItems& w = b->items;
                     const bool kept = b->chains.size() == w.starts.size();
+                    const Segment* segs = w.segments.data();
                     for (std::size_t k = 0; k < w.starts.size(); ++k) {
                         const std::size_t items_k = std::size_t{w.counts[k]} + 2;
-                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size()});
+                        if (kept) whole.push_back(WholeChain{at, items_k, w.arcs, b->chains[k].steps.data(), b->chains[k].steps.size(), segs});
                         at += items_k;
+                        segs += w.counts[k];
                     }
                 }
             }
@@ -1344,7 +1399,10 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     Chain chain;
     Point ref{}, pos{};
     std::vector<Step> arc_scratch, spill;
-    std::size_t chain_steps = 0;  // steps of the chain written into `steps`
+    std::size_t chain_steps = 0;  // steps of the chain, in `steps` or at `chain_from`
+    // A whole-chain copy's steps: the earlier chain's, copied into the chain
+    // at its end (not through `steps`); else null.
+    const Step* chain_from = nullptr;
     std::size_t chain_at = 0;     // the history position of its start item
     bool chain_arcs = false;      // it holds an arc item
     // The buffer's first size: the block's mean chain length.
@@ -1390,12 +1448,14 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             chain = Chain{};
             chain.axes = axes;
             chain_steps = 0;
+            chain_from = nullptr;
             chain_at = at;
             chain_arcs = false;
-            if (!rebuild_start(ref, coder.starts_[e & kIndexMask], axes, chain.start)) return "chain start out of range";
+            const Point& d = *coder.starts_[e & kIndexMask];
+            if (!rebuild_start(ref, d, axes, chain.start)) return "chain start out of range";
             pos = chain.start;
             if (items) {
-                items->starts.push_back(coder.starts_[e & kIndexMask]);
+                items->starts.push_back(d);
                 items->counts.push_back(0);
             }
         } else if (kind == kEndTag) {
@@ -1403,10 +1463,11 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             in_chain = false;
             ref = pos;
             if (expand) {
-                chain.steps.assign(steps.data(), steps.data() + chain_steps);
+                const Step* from = chain_from ? chain_from : steps.data();
+                chain.steps.assign(from, from + chain_steps);
                 out.chains.push_back(std::move(chain));
                 const std::vector<Step>& done = out.chains.back().steps;
-                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size()});
+                whole.push_back(WholeChain{chain_at, at - chain_at + 1, chain_arcs, done.data(), done.size(), nullptr});
             }
         } else {
             if (!in_chain) return "segment outside a chain";
@@ -1442,8 +1503,9 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
     };
     // Takes the copied chain at history position `at`, the same items as the
     // earlier chain `c` (no arc among them): its start and end as take()
-    // does, its segments counted and entered into the block's items, its
-    // steps copied from `c`'s.
+    // does, its segments counted and entered into the block's items (a
+    // window chain's as one range, without a look-up each), its steps
+    // copied from `c`'s.
     auto take_whole = [&](std::size_t at, const WholeChain& c) __attribute__((flatten)) -> const char* {
         if (const char* bad = take(coder.hist_[at], at)) return bad;
         const std::size_t nseg = c.items - 2;
@@ -1451,14 +1513,22 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
             return "more segments or steps than declared";
         seen_segments += nseg;
         seen_steps += c.n;
-        const std::uint32_t* e = coder.hist_.data() + at + 1;
-        for (std::size_t q = 0; q < nseg; ++q) {
-            const Segment& seg = *coder.segs_[e[q] & kIndexMask];
-            for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
-            if (items) items->segments.push_back(seg);
+        if (c.segs) {
+            // A window chain's segments: in one piece in its block's items.
+            for (std::size_t q = 0; q < nseg; ++q)
+                for (int a = 0; a < axes; ++a) pos[a] += c.segs[q].delta[a];
+            if (items) items->segments.insert(items->segments.end(), c.segs, c.segs + nseg);
+        } else {
+            // One of the block's: its segments through the history.
+            const std::uint32_t* e = coder.hist_.data() + at + 1;
+            for (std::size_t q = 0; q < nseg; ++q) {
+                const Segment& seg = *coder.segs_[e[q] & kIndexMask];
+                for (int a = 0; a < axes; ++a) pos[a] += seg.delta[a];
+                if (items) items->segments.push_back(seg);
+            }
         }
         if (items) items->counts.back() += static_cast<std::uint32_t>(nseg);
-        if (c.n != 0) std::memcpy(steps.room(0, c.n), c.steps, c.n * sizeof(Step));  // (an empty chain's steps may be null)
+        chain_from = c.steps;
         chain_steps = c.n;
         return take(coder.hist_[at + c.items - 1], at + c.items - 1);
     };

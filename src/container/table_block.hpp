@@ -52,9 +52,10 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                               unsigned* type = nullptr);
 
 /// The table coder's keys of `b`'s items under `p` and `axes` (the frame's),
-/// made on the first call and kept with `b` for the later table blocks whose
-/// window holds it: taken from `made` when it holds as many (the keys a
-/// write_table_block of the same items filled), else computed. Thread-safe.
+/// and their match hashes, made on the first call and kept with `b` for the
+/// later table blocks whose window holds it: the keys taken from `made` when
+/// it holds as many (the keys a write_table_block of the same items filled),
+/// else computed. Thread-safe.
 const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, TableItemKeys* made = nullptr);
 
 /// Parses a table-block payload into `out` (chains and layout, when

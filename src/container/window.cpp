@@ -57,6 +57,13 @@ void add_steps(WindowBlock& w, const Block& block) {
     if (!w.symbols.empty()) w.starts = start_deltas(block);
 }
 
+void add_steps_lent(WindowBlock& w, Block& block) {
+    const bool lent = block.chains.empty() && !w.chains.empty();
+    if (lent) block.chains.swap(w.chains);
+    add_steps(w, block);
+    if (lent) w.chains.swap(block.chains);
+}
+
 SegmentItems segment_items(const Block& block, const std::vector<std::vector<Segment>>& segs) {
     SegmentItems out;
     out.starts.reserve(block.chains.size());

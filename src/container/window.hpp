@@ -35,6 +35,9 @@ struct SegmentItems {
 struct TableItemKeys {
     std::vector<Segment> canon;
     std::vector<std::uint64_t> keys;
+    /// A window block's: per entry but the last two, the hash of its key
+    /// and the next two (the match finder's, before its shift).
+    std::vector<std::uint64_t> hashes;
 };
 
 /// One earlier block as the window holds it.
@@ -95,6 +98,11 @@ std::vector<Point> start_deltas(const Block& block);
 
 /// The step-model contribution of a chain block: its symbols and starts.
 void add_steps(WindowBlock& w, const Block& block);
+
+/// add_steps() of a block whose chains may be with its contribution (a
+/// table block's, kept in `w.chains` for whole-chain copies; `block` has
+/// none then): they are lent to `block` for it, and given back.
+void add_steps_lent(WindowBlock& w, Block& block);
 
 /// The segment items of `block` cut into `segs`.
 SegmentItems segment_items(const Block& block, const std::vector<std::vector<Segment>>& segs);
