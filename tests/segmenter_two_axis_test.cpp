@@ -197,6 +197,53 @@ TEST(TwoAxisGreedy, PerturbedLinesMatchLetterByLetter) {
     }
 }
 
+// Words (0^k 1)^c 0^j, ended by a step that cannot join, by the other
+// letter or by the input's end: after the c-th 1 the prefixes stop being
+// exact while the word stays a digital straight segment for up to k + 1
+// more letters. longest() reads such stretches again from strips it kept
+// every 16 letters (the last 8 of them) or, past those, from its 12th
+// letter: with k up to 400 every case occurs, at every offset from a kept
+// strip. The words where the last exact prefix lies more than 8 * 16 letters
+// before the segment's end are counted to show that the last case occurs.
+TEST(TwoAxisGreedy, LongStretchesWithoutExactPrefixMatchLetterByLetter) {
+    std::mt19937_64 rng(37);
+    int far = 0;
+    for (Profile p : kLinear) {
+        const auto [zero, one] = letters(p, static_cast<int>(rng() % 4));
+        const Step stop = static_cast<Step>(zero ^ ((zero & 0x1u) ? 0x2u : 0x8u));
+        const GreedySegmenter greedy(p, 2);
+        std::vector<Step> steps;
+        for (int rep = 0; rep < 600; ++rep) {
+            const int k = rep < 40 ? rep + 1 : 1 + static_cast<int>(rng() % 400);
+            const int c = 1 + static_cast<int>(rng() % 3);
+            const int j = static_cast<int>(rng() % static_cast<std::uint64_t>(k + 3));
+            const bool swap = rng() % 2 != 0;
+            steps.clear();
+            for (int t = 0; t < c; ++t) {
+                steps.insert(steps.end(), static_cast<std::size_t>(k), swap ? one : zero);
+                steps.push_back(swap ? zero : one);
+            }
+            steps.insert(steps.end(), static_cast<std::size_t>(j), swap ? one : zero);
+            const int end = static_cast<int>(rng() % 3);
+            if (end == 0) steps.push_back(stop);
+            if (end == 1) steps.push_back(swap ? zero : one);
+            const std::int64_t want = longest_letter_by_letter(p, steps);
+            ASSERT_EQ(greedy.longest(steps), want)
+                << profile_name(p) << " k " << k << " c " << c << " j " << j << " end " << end;
+            SegmentRecognizer rec(p, 2);
+            std::int64_t dss = 0;
+            for (Step s : steps) {
+                if (!rec.can_extend(s) || !rec.extend(s)) break;
+                ++dss;
+            }
+            far += dss - want > 8 * 16 + 16 ? 1 : 0;
+            check_chain(p, steps, false);
+            if (::testing::Test::HasFatalFailure()) return;
+        }
+    }
+    EXPECT_GT(far, 100);
+}
+
 // Long exact lines: one segment each, with the phase they were drawn at
 // whenever that is the valid phase nearest the default (fit_segment decides).
 TEST(TwoAxisGreedy, LongLinesAreOneSegment) {

@@ -99,6 +99,17 @@ struct Strip {
     // (P, Q) = M_n; f at U_f + k * (b, a) is f(U_f) - k * r.
     std::int64_t ufx, ufy, lfx, lfy, ku, kl;
     std::int64_t fuf, flf;
+    // What a letter adds to r (and rel), fuf and flf, by letter (a 0 moves
+    // x: f falls by each point's y; a 1 moves y: f rises by x): one indexed
+    // load each instead of a choice per letter. Set by moves().
+    struct Move {
+        std::int64_t r, fu, fl;
+    } move[2];
+
+    void moves() {
+        move[0] = {a, -ufy, -lfy};
+        move[1] = {-b, ufx, lfx};
+    }
 
     // M_0 and the first letter.
     void start(int first) {
@@ -110,6 +121,7 @@ struct Strip {
         ufx = ufy = lfx = lfy = 0;
         ku = kl = 1;
         fuf = flf = 0;
+        moves();
     }
 
     // A first leaning point (x, y, its f) moved to the last one, k periods on.
@@ -124,22 +136,22 @@ struct Strip {
         a = my - y;
         b = mx - x;
         r = a * mx - b * my;
+        moves();
     }
 
     // Appends a letter; false when the word stops being a digital straight
     // segment (the strip is then no longer meaningful).
     STEPZIP_DSS_INLINE bool add(int letter) {
-        // A 0 moves x (f falls by each point's y), a 1 moves y (f rises by x).
-        const bool y = letter != 0;
-        mx += y ? 0 : 1;
-        my += y ? 1 : 0;
-        const std::int64_t dr = y ? -b : a;
-        r += dr;
-        rel += dr;
-        fuf += y ? ufx : -ufy;
-        flf += y ? lfx : -lfy;
+        const Move& d = move[letter];
+        mx += 1 - letter;
+        my += letter;
+        r += d.r;
+        rel += d.r;
+        fuf += d.fu;
+        flf += d.fl;
         const std::int64_t w = a + b;
-        if (rel >= 0 && rel < w) {
+        if (rel > 0 && rel < w - 1) return true;  // strictly inside: most letters
+        if (rel == 0 || rel == w - 1) {
             ku += rel == 0 ? 1 : 0;      // M_n is the next upper leaning point
             kl += rel == w - 1 ? 1 : 0;  // the next lower one
         } else if (rel == -1) {  // above by one: turn about U_f (U_l = M_n, L_f = old L_l)
@@ -218,33 +230,79 @@ inline bool admit(Step (&value)[2], Step s, int letter, bool eight) {
 }
 
 namespace {
-// The longest exact prefix of the first n > kShortLetters steps, whose first
-// kShortLetters letters left `from` and had `best` as their longest exact
-// prefix (`best_ones` ones in it, updated with it); `value` holds the
-// letters' step values (admit). kEight: the profile is 8-connected.
-template <bool kEight>
-std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
-                          std::int64_t& best_ones) {
-    // The step values in locals, the strip in registers.
-    Step v0 = value[0], v1 = value[1];
-    Strip strip = from;
-    std::int64_t ones = best_ones;
-    for (std::size_t i = kShortLetters; i < n; ++i) {
-        const Step s = st[i];
-        const int letter = letter_of(s, kEight);
-        if (s != (letter != 0 ? v1 : v0)) {
-            if (!admit(value, s, letter, kEight)) break;
-            v0 = value[0];
-            v1 = value[1];
-        }
-        if (!strip.add(letter)) break;
+// The last exact prefix among the first begin + 1 .. end letters, 0 if
+// none (`ones`: the ones in it): from `strip`, the strip after the first
+// `begin`, the letters of steps [begin, end), all admitted with letter 1's
+// value v1 and together a digital straight segment.
+std::int64_t last_exact(Strip strip, const Step* st, std::size_t begin, std::size_t end, Step v1,
+                        std::int64_t& ones) {
+    std::int64_t best = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+        strip.add(st[i] == v1 ? 1 : 0);
         if (strip.exact()) {
             best = static_cast<std::int64_t>(i + 1);
             ones = strip.my;
         }
     }
-    best_ones = ones;
     return best;
+}
+
+// The longest exact prefix of the first n > kShortLetters steps, whose first
+// kShortLetters letters left `from` and had `best` as their longest exact
+// prefix (`best_ones` ones in it, updated with it); `value` holds the
+// letters' step values (admit). kEight: the profile is 8-connected.
+//
+// Only the last exact prefix counts, so the letters are read to the end of
+// the digital straight segment without the exactness test (about half the
+// work per letter), keeping the strip every kMarkEvery letters for the last
+// kMarks such stretches; then the stretches are read again with the test,
+// newest first, until one holds an exact prefix. Exact prefixes are dense
+// on drawn lines: mostly the last stretch alone is read again. When none of
+// the kept stretches holds one, the letters before them are read again from
+// `from`.
+template <bool kEight>
+std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
+                          std::int64_t& best_ones) {
+    constexpr std::size_t kMarkEvery = 16, kMarks = 8;
+    // mark[c % kMarks]: the strip after kShortLetters + c * kMarkEvery letters.
+    Strip mark[kMarks];
+    std::size_t marks = 0;
+    // The step values in locals, the strip in registers.
+    Step v0 = value[0], v1 = value[1];
+    Strip strip = from;
+    std::size_t i = kShortLetters;
+    for (bool dss = true; dss && i < n;) {
+        mark[marks++ % kMarks] = strip;
+        for (const std::size_t end = std::min(i + kMarkEvery, n); i < end; ++i) {
+            const Step s = st[i];
+            // A step is 0 (unset) in neither value: those it equals give its letter.
+            int letter = s == v1 ? 1 : 0;
+            if (letter == 0 && s != v0) {
+                letter = letter_of(s, kEight);
+                dss = admit(value, s, letter, kEight);
+                if (!dss) break;
+                v0 = value[0];
+                v1 = value[1];
+            }
+            dss = strip.add(letter);
+            if (!dss) break;
+        }
+    }
+    // The first i letters are a digital straight segment.
+    std::int64_t ones = 0;
+    const std::size_t kept = std::min(marks, kMarks);
+    for (std::size_t c = marks; c > marks - kept; --c) {
+        const std::size_t begin = kShortLetters + (c - 1) * kMarkEvery;
+        const std::int64_t m = last_exact(mark[(c - 1) % kMarks], st, begin, std::min(begin + kMarkEvery, i), v1, ones);
+        if (m > 0) {
+            best_ones = ones;
+            return m;
+        }
+    }
+    const std::int64_t m =
+        last_exact(from, st, kShortLetters, kShortLetters + (marks - kept) * kMarkEvery, v1, ones);
+    if (m > 0) best_ones = ones;
+    return m > 0 ? m : best;
 }
 }  // namespace
 
@@ -298,10 +356,12 @@ std::optional<Segment> TwoAxisGreedy::fit(std::span<const Step> steps, std::int6
     // Letter counts of the prefix (a, b) = (#zeros, #ones): the rule's
     // counts both for eval4 (|dx|, |dy|) and for the minor axis of the
     // 8-connected profiles (L - S, S).
+    // Every step of the prefix is one of the two values longest() admitted.
+    const Step one = value_[1];
     std::int64_t b = best_ones_;
     if (m != best_length_) {
         b = 0;
-        for (std::int64_t i = 0; i < m; ++i) b += letter_of(st[i], eight_);
+        for (std::int64_t i = 0; i < m; ++i) b += st[i] == one ? 1 : 0;
     }
     const std::int64_t a = m - b;
     Segment seg;
@@ -318,7 +378,7 @@ std::optional<Segment> TwoAxisGreedy::fit(std::span<const Step> steps, std::int6
     constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
     std::int64_t lo = -kInf, hi = kInf, v = 0;
     for (std::int64_t i = 0; i < m; ++i) {
-        if (letter_of(st[i], eight_) != 0) {
+        if (st[i] == one) {
             hi = std::min(hi, v);
             v -= a;
         } else {
