@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <limits>
+#include <numeric>
 
 namespace stepzip::detail {
 
@@ -172,11 +173,13 @@ struct Strip {
         return true;
     }
 
+    // The least f over the word's points (at an upper leaning point or 0).
+    std::int64_t lowest() const { return std::min(fuf + std::min(-ku * r, std::int64_t{0}), std::int64_t{0}); }
+
     // The word read so far is exact.
     bool exact() const {
         const std::int64_t hi = std::max(flf + std::max(-kl * r, std::int64_t{0}), std::int64_t{0});
-        const std::int64_t lo = std::min(fuf + std::min(-ku * r, std::int64_t{0}), std::int64_t{0});
-        return hi - lo < mx + my;
+        return hi - lowest() < mx + my;
     }
 };
 
@@ -230,27 +233,29 @@ inline bool admit(Step (&value)[2], Step s, int letter, bool eight) {
 }
 
 namespace {
-// The last exact prefix among the first begin + 1 .. end letters, 0 if
-// none (`ones`: the ones in it): from `strip`, the strip after the first
-// `begin`, the letters of steps [begin, end), all admitted with letter 1's
-// value v1 and together a digital straight segment.
-std::int64_t last_exact(Strip strip, const Step* st, std::size_t begin, std::size_t end, Step v1,
-                        std::int64_t& ones) {
-    std::int64_t best = 0;
+// An exact prefix: its length (0: none), its ones and the least f over its
+// points (Strip::lowest).
+struct Exact {
+    std::int64_t length = 0, ones = 0, lowest = 0;
+};
+
+// The last exact prefix among the first begin + 1 .. end letters: from
+// `strip`, the strip after the first `begin`, the letters of steps
+// [begin, end), all admitted with letter 1's value v1 and together a
+// digital straight segment.
+Exact last_exact(Strip strip, const Step* st, std::size_t begin, std::size_t end, Step v1) {
+    Exact best;
     for (std::size_t i = begin; i < end; ++i) {
         strip.add(st[i] == v1 ? 1 : 0);
-        if (strip.exact()) {
-            best = static_cast<std::int64_t>(i + 1);
-            ones = strip.my;
-        }
+        if (strip.exact()) best = {static_cast<std::int64_t>(i + 1), strip.my, strip.lowest()};
     }
     return best;
 }
 
-// The longest exact prefix of the first n > kShortLetters steps, whose first
-// kShortLetters letters left `from` and had `best` as their longest exact
-// prefix (`best_ones` ones in it, updated with it); `value` holds the
-// letters' step values (admit). kEight: the profile is 8-connected.
+// The longest exact prefix of the first n > kShortLetters steps longer than
+// kShortLetters (length 0: none), whose first kShortLetters letters left
+// `from`; `value` holds the letters' step values (admit). kEight: the
+// profile is 8-connected.
 //
 // Only the last exact prefix counts, so the letters are read to the end of
 // the digital straight segment without the exactness test (about half the
@@ -261,8 +266,7 @@ std::int64_t last_exact(Strip strip, const Step* st, std::size_t begin, std::siz
 // the kept stretches holds one, the letters before them are read again from
 // `from`.
 template <bool kEight>
-std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from, std::int64_t best,
-                          std::int64_t& best_ones) {
+Exact read_letters(Step (&value)[2], const Step* st, std::size_t n, const Strip& from) {
     constexpr std::size_t kMarkEvery = 16, kMarks = 8;
     // mark[c % kMarks]: the strip after kShortLetters + c * kMarkEvery letters.
     Strip mark[kMarks];
@@ -289,20 +293,13 @@ std::int64_t read_letters(Step (&value)[2], const Step* st, std::size_t n, const
         }
     }
     // The first i letters are a digital straight segment.
-    std::int64_t ones = 0;
     const std::size_t kept = std::min(marks, kMarks);
     for (std::size_t c = marks; c > marks - kept; --c) {
         const std::size_t begin = kShortLetters + (c - 1) * kMarkEvery;
-        const std::int64_t m = last_exact(mark[(c - 1) % kMarks], st, begin, std::min(begin + kMarkEvery, i), v1, ones);
-        if (m > 0) {
-            best_ones = ones;
-            return m;
-        }
+        const Exact e = last_exact(mark[(c - 1) % kMarks], st, begin, std::min(begin + kMarkEvery, i), v1);
+        if (e.length > 0) return e;
     }
-    const std::int64_t m =
-        last_exact(from, st, kShortLetters, kShortLetters + (marks - kept) * kMarkEvery, v1, ones);
-    if (m > 0) best_ones = ones;
-    return m > 0 ? m : best;
+    return last_exact(from, st, kShortLetters, kShortLetters + (marks - kept) * kMarkEvery, v1);
 }
 }  // namespace
 
@@ -328,17 +325,26 @@ std::int64_t TwoAxisGreedy::longest(std::span<const Step> steps) {
         const int m = 31 - __builtin_clz(valid);  // bit 1 is always set
         best_length_ = m;
         best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
+        best_lowest_.reset();
         return m;
     }
     // Longer words: the arithmetic recognition (Strip) from the strip of
     // the first kShortLetters letters, a letter at a time.
     const std::size_t lim_all = std::min<std::size_t>(n, static_cast<std::size_t>(kMaxSegmentTotal));
     const Resume& t = resume_table();
-    const int m = 31 - __builtin_clz(e & ((2u << kShortLetters) - 2u));
-    best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
     const Strip& from = t.strip[t.index[bits]];
-    best_length_ = eight_ ? read_letters<true>(value_, st, lim_all, from, m, best_ones_)
-                          : read_letters<false>(value_, st, lim_all, from, m, best_ones_);
+    const Exact x =
+        eight_ ? read_letters<true>(value_, st, lim_all, from) : read_letters<false>(value_, st, lim_all, from);
+    if (x.length > 0) {
+        best_length_ = x.length;
+        best_ones_ = x.ones;
+        best_lowest_ = x.lowest;
+    } else {  // the table's answer
+        const int m = 31 - __builtin_clz(e & ((2u << kShortLetters) - 2u));
+        best_length_ = m;
+        best_ones_ = __builtin_popcount(bits & ((1u << m) - 1u));
+        best_lowest_.reset();
+    }
     return best_length_;
 }
 
@@ -375,15 +381,31 @@ std::optional<Segment> TwoAxisGreedy::fit(std::span<const Step> steps, std::int6
     }
     // F0 in [max over 0-positions of p*b - q*a, min over 1-positions) (see
     // fit.cpp, word_phases); v = p*b - q*a moves by b at a 0, by -a at a 1.
-    constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
-    std::int64_t lo = -kInf, hi = kInf, v = 0;
-    for (std::int64_t i = 0; i < m; ++i) {
-        if (st[i] == one) {
-            hi = std::min(hi, v);
-            v -= a;
-        } else {
-            lo = std::max(lo, v);
-            v += b;
+    // v is Strip's f for (P, Q) = (a, b). When longest() found the prefix by
+    // the arithmetic recognition it knows the least v, and that decides both
+    // bounds: an exact prefix is the rule's word, periodic with period m / g
+    // (g = gcd(a, b)); its values of v at positions 0..m-1 are
+    // v_i = i*b - q_i*m (mod m: multiples of g), span less than m, so they
+    // are the m / g values least, least + g, ..., each g times; the a zeros
+    // take the a / g least ones.
+    std::int64_t lo, hi;
+    if (m == best_length_ && best_lowest_) {
+        const std::int64_t g = std::gcd(a, b);
+        lo = *best_lowest_ + a - g;
+        hi = *best_lowest_ + a;
+    } else {
+        constexpr std::int64_t kInf = std::numeric_limits<std::int64_t>::max();
+        lo = -kInf;
+        hi = kInf;
+        std::int64_t v = 0;
+        for (std::int64_t i = 0; i < m; ++i) {
+            if (st[i] == one) {
+                hi = std::min(hi, v);
+                v -= a;
+            } else {
+                lo = std::max(lo, v);
+                v += b;
+            }
         }
     }
     const auto f = dss::pick_phase(profile_, fa, b, lo, hi);

@@ -46,9 +46,11 @@ private:
     Profile profile_;
     bool eight_;
     // The step value of each letter, admitted by the last longest(); its
-    // answer and the ones (letter 1) in that prefix.
+    // answer and the ones (letter 1) in that prefix; the least value of
+    // p*b - q*a over its positions when the arithmetic recognition found it.
     Step value_[2] = {0, 0};
     std::int64_t best_length_ = 0, best_ones_ = 0;
+    std::optional<std::int64_t> best_lowest_;
 };
 
 }  // namespace stepzip::detail
