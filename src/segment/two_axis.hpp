@@ -15,7 +15,9 @@
 // SegmentRecognizer (tests/recognizer_test.cpp,
 // tests/segmenter_two_axis_test.cpp).
 // Invariant: longest() returns RunSegment's (and SegmentRecognizer's) longest
-// exact prefix. Complexity: O(1) per letter; fit() is O(m).
+// exact prefix. Complexity: O(1) per letter (the exactness test only on
+// the segment's last stretches, read twice); fit() is O(m) after the
+// table's short words and O(log m) (a gcd) after the arithmetic recognition.
 #pragma once
 
 #include <cstdint>
