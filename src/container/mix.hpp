@@ -139,13 +139,16 @@ private:
 
 // The hashed tables of all models: kMixMaxModels << kMixTableBits entries,
 // all zero (p = 32768, n = 0) when a predictor takes them. Dirty flags of
-// 2^kChunkBits entries (64 KiB) tell which parts a predictor wrote, so that
-// giving the tables back clears only those. In 2 MiB pages (ZeroPages): a
+// 2^kChunkBits entries (4 KiB) tell which parts a predictor wrote, so that
+// giving the tables back clears only those: a block dirties at most eight
+// 4 KiB parts per mixed decision, where 64 KiB parts made a block of a few
+// hundred decisions clear most of the 32 MiB (a library caller compressing
+// many small timed logs in one process, the fuzz targets). In 2 MiB pages (ZeroPages): a
 // block of a few thousand segments touches every 4 KiB page of the 32 MiB,
 // 8192 page faults (most of -L 19's system time on a 25 KB file) against 16.
 struct HashedTables {
     static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMaxModels) << kMixTableBits;
-    static constexpr int kChunkBits = 14;
+    static constexpr int kChunkBits = 10;
     static constexpr std::size_t kChunks = kEntries >> kChunkBits;
 
     /// Back to all zero: only the chunks flagged dirty are cleared.
