@@ -222,33 +222,38 @@ private:
     // line that kept them would break again (on the timed streams of
     // docs/benchmarks.md five times as often as the rate changed).
     void rebuild(bool at_one) {
-        // Backward, a run at a time: where a run is not admitted whole, the
-        // longest admitted part of it (admission only shrinks along a run).
-        back_.reset();
         const std::size_t end = hist_.size();
+        const std::size_t reach = end - std::min(end, kRebuild);  // the earliest letter a rebuild reads
         std::size_t i = end;
-        while (i > 0 && end - i < kRebuild) {
-            const int letter = hist_[i - 1];
-            std::size_t j = i - 1;
-            while (j > 0 && hist_[j - 1] == letter && end - j < kRebuild) --j;
-            const auto k = static_cast<std::int64_t>(i - j);
-            if (back_.admits_run(letter, k)) {
-                back_.read_run(letter, k);
-                i = j;
-                continue;
-            }
-            std::int64_t good = 0, bad = k;
-            while (bad - good > 1) {
-                const std::int64_t mid = (good + bad) / 2;
-                (back_.admits_run(letter, mid) ? good : bad) = mid;
-            }
-            i -= static_cast<std::size_t>(good);
-            break;
-        }
         if (at_one) {
-            std::size_t one = end;
-            while (one > i && hist_[one - 1] != 1) --one;
-            if (one > i) i = one - 1;
+            // The letters from the last 1 on hold one 1 and are straight, so
+            // the longest straight suffix reaches that 1 whenever it lies
+            // within reach: the line starts there, with no backward reading.
+            // Without a 1 within reach the suffix is all 0s, to the reach.
+            while (i > reach && hist_[i - 1] != 1) --i;
+            i = i > reach ? i - 1 : reach;
+        } else {
+            // Backward, a run at a time: where a run is not admitted whole, the
+            // longest admitted part of it (admission only shrinks along a run).
+            back_.reset();
+            while (i > reach) {
+                const int letter = hist_[i - 1];
+                std::size_t j = i - 1;
+                while (j > reach && hist_[j - 1] == letter) --j;
+                const auto k = static_cast<std::int64_t>(i - j);
+                if (back_.admits_run(letter, k)) {
+                    back_.read_run(letter, k);
+                    i = j;
+                    continue;
+                }
+                std::int64_t good = 0, bad = k;
+                while (bad - good > 1) {
+                    const std::int64_t mid = (good + bad) / 2;
+                    (back_.admits_run(letter, mid) ? good : bad) = mid;
+                }
+                i -= static_cast<std::size_t>(good);
+                break;
+            }
         }
         line_.reset();
         start_ = i;
