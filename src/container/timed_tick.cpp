@@ -69,6 +69,11 @@ public:
         if (lo_set_ && !dss::less<std::int64_t>(lo_.n, lo_.d, n, d)) return true;  // lo unchanged
         return dss::less<std::int64_t>(n, d, hi_.n, hi_.d);
     }
+    /// The line's rate, ones per letter in units of 1/RateGuess::kOne: the
+    /// middle of the rates it admits when both bounds are set, else its
+    /// ones over its letters; 0 when empty.
+    std::int64_t rate() const;
+    bool bounded() const { return lo_set_ && hi_set_; }
     /// Appends a letter that admits() allowed.
     void read(int letter) { read_run(letter, 1); }
     /// Appends k >= 1 letters `letter` that admits_run() allowed, with the
@@ -105,6 +110,69 @@ private:
     std::int64_t p_ = 0, q_ = 0;
 };
 
+/// The next letter of a line predicted from a rate r (ones per letter,
+/// fixed point): the word read since the line's start is the digitization
+/// floor(r k + mu) of a line of that rate for the phases mu in [lo, hi];
+/// the next letter is 1 for the phases at or above a threshold. Integer
+/// arithmetic only (the decoder computes the same on every machine).
+class RateGuess {
+public:
+    static constexpr std::int64_t kOne = std::int64_t{1} << 24;
+    /// Buckets of guess(): none, a sure 1, a sure 0, kShares shares of 1.
+    static constexpr int kShares = 6;
+    static constexpr int kBuckets = 3 + kShares;
+
+    void clear() { valid_ = false; }
+    /// A line of rate r from here on (none when r <= 0).
+    void start(std::int64_t r) {
+        r_ = std::min(r, kOne);
+        lo_ = 0;
+        hi_ = kOne - 1;
+        k_ = s_ = 0;
+        valid_ = r > 0;
+    }
+    bool valid() const { return valid_; }
+    void read(int letter) {
+        if (!valid_) return;
+        ++k_;
+        s_ += letter;
+        lo_ = std::max(lo_, s_ * kOne - r_ * k_);
+        hi_ = std::min(hi_, s_ * kOne + kOne - 1 - r_ * k_);
+        valid_ = lo_ <= hi_;
+    }
+    /// Where the line's counter r k + mu - s (mu the middle of the phases
+    /// left) reaches 1: as a fraction of the next event in 1/kOne, 0..kOne;
+    /// -1 when it does not within the next event or there is no line.
+    std::int64_t crossing() const {
+        if (!valid_) return -1;
+        const std::int64_t counter = r_ * k_ + (lo_ + hi_) / 2 - s_ * kOne;
+        const std::int64_t left = kOne - counter;
+        if (left > r_) return -1;
+        return std::max<std::int64_t>(left, 0) * kOne / r_;
+    }
+    /// The share of the phases left that give a 1 next, in buckets.
+    int guess() const {
+        if (!valid_) return 0;
+        const std::int64_t theta = (s_ + 1) * kOne - r_ * (k_ + 1);
+        if (theta <= lo_) return 1;
+        if (theta > hi_) return 2;
+        return 3 + static_cast<int>((hi_ - theta + 1) * kShares / (hi_ - lo_ + 2));
+    }
+
+private:
+    std::int64_t r_ = 0, lo_ = 0, hi_ = 0, k_ = 0, s_ = 0;
+    bool valid_ = false;
+};
+
+std::int64_t Line::rate() const {
+    const std::int64_t len = p_ + q_;
+    if (len == 0) return 0;
+    if (!lo_set_ || !hi_set_) return q_ * RateGuess::kOne / len;
+    // A slope n/d (ones per zero) is the rate n / (n + d).
+    const auto r = [](const dss::Frac& f) { return f.n * RateGuess::kOne / (f.n + f.d); };
+    return (r(lo_) + r(hi_) + 1) / 2;
+}
+
 /// One binary word (a letter per event) followed as the longest digital
 /// straight segment ending at its last letter (docs/FORMAT.md "Tick block":
 /// the follower). The context of the next letter: which letters the segment
@@ -115,9 +183,11 @@ private:
 class Follower {
 public:
     /// Empties the follower; `restart`: a line that breaks restarts at its
-    /// last 1 (the coding flag kTickRestart).
-    void reset(bool restart) {
+    /// last 1 (the coding flag kTickRestart); `guess`: the line guesses its
+    /// next letter (kTickGuess).
+    void reset(bool restart, bool guess) {
         restart_ = restart;
+        guessing_ = guess;
         line_.reset();
         hist_.clear();
         start_ = 0;
@@ -129,7 +199,17 @@ public:
         ones_.fill(-1);
         n_ = 0;
         recent_ = 0;
+        guess_.clear();
+        rates_ = {};
+        line_start_ = 0;
+        retry_ = 0;
     }
+
+    /// The next letter as the line's guessed rate has it (RateGuess::guess()).
+    int guess() const { return guess_.guess(); }
+    /// Where in the next event the line's counter crosses to its next 1
+    /// (RateGuess::crossing()).
+    std::int64_t crossing() const { return guess_.crossing(); }
 
     /// The last 64 letters, the latest in bit 0 (mixed coding).
     std::uint64_t recent() const { return recent_; }
@@ -189,9 +269,27 @@ public:
         recent_ = (recent_ << 1) | static_cast<std::uint64_t>(letter);
         if ((adm >> letter) & 1) {
             line_.read(letter);
-            if (line_.length() >= kMaxLine) rebuild(false);
+            if (guessing_) guess_.read(letter);
+            if (line_.length() >= kMaxLine) {
+                const std::int64_t r = line_.rate();
+                rebuild(false);
+                if (guessing_) restart_guess(r);
+            } else if (guessing_ && !guess_.valid() && line_.bounded() && line_.length() >= retry_) {
+                // A line whose letters the guessed rate no longer gives: its
+                // own rate; again only when the line has grown by a quarter,
+                // at least 8 letters (a retry reads up to kGuessReplay letters).
+                restart_guess(line_.rate());
+                retry_ = line_.length() + std::max<std::int64_t>(8, line_.length() / 4);
+            }
         } else {
+            if (guessing_) {
+                // The line that ends (its letters before this one): its rate, at its middle.
+                const std::int64_t end = n_ - 1;
+                rates_[1] = rates_[0];
+                rates_[0] = {line_.rate(), line_start_ + end, end - line_start_};
+            }
             rebuild(restart_);
+            if (guessing_) restart_guess(predicted_rate());
             period_ = since_break_;
             since_break_ = 0;
         }
@@ -214,6 +312,36 @@ public:
     }
 
 private:
+    struct LineRate {
+        std::int64_t rate, mid2, length;  // mid2: twice the middle letter
+    };
+    /// A guess that restarts reads at most the line's last kGuessReplay
+    /// letters (a suffix of a straight word is straight, of the same rate).
+    static constexpr std::size_t kGuessReplay = 256;
+
+    // The rate of the line after a break: the last line's, carried on by
+    // the change from the line before (constant acceleration: a rate
+    // linear in time), when both are known and the change is under half.
+    std::int64_t predicted_rate() const {
+        const LineRate& a = rates_[0];
+        const LineRate& b = rates_[1];
+        if (a.length == 0) return 0;
+        if (b.length == 0 || a.mid2 <= b.mid2 || 2 * std::abs(a.rate - b.rate) > a.rate) return a.rate;
+        // The new line's middle lies a line's length past the last one's.
+        const std::int64_t r = a.rate + (a.rate - b.rate) * (2 * a.length) / (a.mid2 - b.mid2);
+        return std::clamp<std::int64_t>(r, 1, RateGuess::kOne);
+    }
+    // The guess restarts with rate r at the line's start, or kGuessReplay
+    // letters before its end, and reads the letters since.
+    void restart_guess(std::int64_t r) {
+        const std::size_t end = hist_.size();
+        retry_ = 0;
+        line_start_ = n_ - static_cast<std::int64_t>(end - start_);
+        guess_.start(r);
+        const std::size_t from = end - std::min(end - start_, kGuessReplay);
+        for (std::size_t j = from; j < end; ++j) guess_.read(hist_[j]);
+    }
+
     // The segment becomes the longest straight suffix of at most kRebuild
     // letters (a word is straight iff its reverse is: it is read backward);
     // with `at_one`, of those that start no earlier than the last 1. A
@@ -265,7 +393,7 @@ private:
         }
     }
 
-    bool restart_ = false;
+    bool restart_ = false, guessing_ = false;
     Line line_, back_;
     std::vector<std::uint8_t> hist_;
     std::size_t start_ = 0;
@@ -276,6 +404,10 @@ private:
     std::array<std::int64_t, 4> ones_{-1, -1, -1, -1};  // events of the last four ones, latest first
     std::int64_t n_ = 0;                                 // events read
     std::uint64_t recent_ = 0;                           // the last 64 letters, latest in bit 0
+    RateGuess guess_;
+    std::array<LineRate, 2> rates_{};  // the last two lines that broke, latest first
+    std::int64_t line_start_ = 0;      // the event of the line's first letter
+    std::int64_t retry_ = 0;           // the line's length from which a guess that fails restarts
 };
 
 constexpr int kMinor = kMaxAxes - 1;  // axes besides time
@@ -358,18 +490,19 @@ public:
     /// `windows`: an interrupt block (subtype 1), whose B[a] follow the
     /// axes per leader step (FORMAT.md 1.14); `coding`: with mixed
     /// predictions, coding 2 leaves the sure decisions to their contexts
-    /// and names other hashed models in v0 and v4; `restart`: the
-    /// followers' lines restart at their last 1 when they break.
-    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, bool restart)
+    /// and names other hashed models in v0 and v4; `flags`: kTickRestart
+    /// (the followers' lines restart at their last 1 when they break) and
+    /// kTickGuess (mixed codings: their lines guess the next letter).
+    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
-          restart_(restart) {
+          restart_((flags & kTickRestart) != 0), guess_((flags & kTickGuess) != 0) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
     }
 
     /// A chain's start: every follower forgets.
     void start_chain() {
-        for (auto& f : axis_) f.reset(restart_);
-        for (auto& f : bres_) f.reset(restart_);
+        for (auto& f : axis_) f.reset(restart_, guess_);
+        for (auto& f : bres_) f.reset(restart_, guess_);
         moved_.fill(0);
         sign_.fill(1);
         since_.fill(0);
@@ -399,7 +532,7 @@ public:
         }
         if (order[0] != leader_) {
             leader_ = order[0];
-            for (auto& f : bres_) f.reset(restart_);
+            for (auto& f : bres_) f.reset(restart_, guess_);
             moved_.fill(0);
         }
         unsigned m = 0, n = 0;
@@ -430,15 +563,25 @@ public:
                 }
                 mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
                 mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
-                mix_context(io_, 3, ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
+                const auto uf = static_cast<std::uint64_t>(fa);
+                // The guess flag: the axis's guessed next letter with the time
+                // since its last step, in place of its last interval.
+                mix_context(io_, 3, guess_ ? ctx_join(ctx_join(ax, 9), (static_cast<std::uint64_t>(f.guess()) << 22) |
+                                                                           (capped(since_[ua]) << 12) | uf)
+                                           : ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
                 // Coding 2: where the axis's line broke, in place of its admitted set
-                // and b (which the primary context holds).
-                mix_context(io_, 4, ctx_join(ctx_join(ax, 5), sure_ ? (f.breaks() << 2) | static_cast<std::uint64_t>(fa)
-                                                                    : (static_cast<std::uint64_t>(fa) << 2) |
-                                                                          static_cast<std::uint64_t>(ba)));
+                // and b (which the primary context holds). The guess flag, on an
+                // interrupt block's axis that follows the leader: where in the
+                // leader's interval its Bresenham line steps (crossing()).
+                if (guess_ && windows_ && i > 0)
+                    mix_context(io_, 4, ctx_join(ctx_join(ax, 10), crossing_context(ua, fa)));
+                else
+                    mix_context(io_, 4, ctx_join(ctx_join(ax, 5), sure_ ? (f.breaks() << 2) | uf : (uf << 2) | static_cast<std::uint64_t>(ba)));
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
                 const auto& g = gaps_[ua];
-                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), (static_cast<std::uint64_t>(trend(since_[ua] + 1, g)) << 4) | static_cast<std::uint64_t>(fa)));
+                const std::uint64_t tr = static_cast<std::uint64_t>(trend(since_[ua] + 1, g));
+                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guess_ ? (tr << 12) | (static_cast<std::uint64_t>(f.guess()) << 4) | uf
+                                                                     : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
             }
             const int step = io_.bit(t_.axis(ua).step[ctx], static_cast<int>((mask >> a) & 1u));
@@ -497,6 +640,21 @@ private:
         return wa == 2 && lead_step ? 2 : 3;
     }
 
+    // The guess flag, axis `ua` of an interrupt block that follows the
+    // leader: a step now against the tick where its Bresenham line
+    // (bres_) crosses to its next step, that line's crossing() as a share
+    // of the leader's last interval after the leader's last step, in
+    // quarter ticks and clamped (18: no crossing in this interval); with
+    // whether the axis has stepped in the interval and its admitted set.
+    std::uint64_t crossing_context(std::size_t ua, int fa) const {
+        const std::int64_t cr = bres_[ua].crossing();
+        const auto ul = static_cast<std::size_t>(leader_);
+        int d = 18;
+        if (cr >= 0 && gap_[ul] > 0)
+            d = clamp_int(4 * (since_[ul] + 1) - 4 * cr * gap_[ul] / RateGuess::kOne, -8, 8) + 8;
+        return static_cast<std::uint64_t>((d * 2 + moved_[ua]) * 4 + fa);
+    }
+
     static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
     // Mixed coding, the intervals of an axis `g` (latest first, 0: none):
     // a step now (after `next` ticks) against the next interval
@@ -533,6 +691,7 @@ private:
     bool windows_;
     bool sure_;     // coding 2
     bool restart_;  // the coding flag kTickRestart
+    bool guess_;    // the coding flag kTickGuess
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -550,9 +709,9 @@ namespace {
 
 // The chains of `block` (every step advancing time) coded through `io`.
 template <class Io>
-void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, bool restart) {
+void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, unsigned flags) {
     const int axes = block.axes;
-    TickCoder<Io> coder(io, t, axes, windows, coding, restart);
+    TickCoder<Io> coder(io, t, axes, windows, coding, flags);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -575,7 +734,7 @@ void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCo
     }
 }
 
-std::string write_ticks_payload(const Block& block, TickCoding coding, bool restart, unsigned subtype) {
+std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned flags, unsigned subtype) {
     const int axes = block.axes;
     if (axes < 2 || axes > kMaxAxes) return {};
     std::uint64_t nsteps = 0;
@@ -586,7 +745,8 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, bool rest
     }
     std::string out;
     put_u8(out, subtype);
-    put_u8(out, static_cast<unsigned>(coding) | (restart ? kTickRestart : 0));
+    flags &= coding == TickCoding::plain ? kTickRestart : kTickFlags;
+    put_u8(out, static_cast<unsigned>(coding) | flags);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
@@ -595,11 +755,11 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, bool rest
         MixPredictor pred((*tables).base(), kMixMaxModels);
         MixEncIo io;
         io.m = &pred;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, restart);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
         out += io.rc.finish();
     } else {
         EncIo io;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, restart);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
         out += io.rc.finish();
     }
     return out;
@@ -607,12 +767,12 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, bool rest
 
 }  // namespace
 
-std::string write_tick_block(const Block& block, TickCoding coding, bool restart) {
-    return write_ticks_payload(block, coding, restart, kTickSubtype);
+std::string write_tick_block(const Block& block, TickCoding coding, unsigned flags) {
+    return write_ticks_payload(block, coding, flags, kTickSubtype);
 }
 
-std::string write_interrupt_block(const Block& block, TickCoding coding, bool restart) {
-    return write_ticks_payload(block, coding, restart, kInterruptSubtype);
+std::string write_interrupt_block(const Block& block, TickCoding coding, unsigned flags) {
+    return write_ticks_payload(block, coding, flags, kInterruptSubtype);
 }
 
 namespace {
@@ -625,7 +785,10 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
     const bool windows = subtype == kInterruptSubtype;
-    const auto is = [&](TickCoding c) { return (coding & ~kTickRestart) == static_cast<unsigned>(c); };
+    // The guess flag goes with a mixed coding only.
+    const auto is = [&](TickCoding c) {
+        return (coding & ~(c == TickCoding::plain ? kTickRestart : kTickFlags)) == static_cast<unsigned>(c);
+    };
     if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));
@@ -645,7 +808,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickRestart), (coding & kTickRestart) != 0);
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickFlags), coding & kTickFlags);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
@@ -692,7 +855,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
                              const std::string& where) {
     // The coding byte picks the coder (an unknown one is reported by the plain reader).
-    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~kTickRestart : 0;
+    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~kTickFlags : 0;
     if (coding == static_cast<unsigned>(TickCoding::mixed) || coding == static_cast<unsigned>(TickCoding::mixed_sure))
         return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
     return read_ticks<DecIo>(payload, axes, expand, out, counts, where);

@@ -34,15 +34,24 @@ enum class TickCoding : unsigned { plain = 0, mixed = 1, mixed_sure = 2 };
 /// encoder sets it on every block; the blocks without it decode as before.
 inline constexpr unsigned kTickRestart = 4;
 
+/// Flag of the coding byte, with a mixed coding only: each axis's line
+/// guesses its rate after a break from the rates of the two lines before,
+/// and mixed contexts take the letter that rate gives next
+/// (docs/FORMAT.md 1.13, "Guess"). The blocks without it decode as before.
+inline constexpr unsigned kTickGuess = 8;
+/// The coding byte's flags the encoder sets (kTickGuess only on a mixed
+/// coding).
+inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess;
+
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `restart`: the flag kTickRestart.
-std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, bool restart = true);
+/// `flags`: of kTickRestart and kTickGuess (dropped on the plain coding).
+std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md
 /// 1.14); empty when it cannot be one (as write_tick_block).
-std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain, bool restart = true);
+std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
 
 /// Parses a tick-block or interrupt-block payload into `out` (when `expand`) and adds its
 /// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit
