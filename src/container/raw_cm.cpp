@@ -79,20 +79,26 @@ struct Bucket {
 };
 static_assert(sizeof(Bucket) == 32);
 
-// Adaptive probability map: rows of 33 points over the stretched domain.
+// Adaptive probability map: rows of 33 points over the stretched domain,
+// every row squash((j - 16) * 128) at first. A row is written when first
+// used (a small block touches few of map 1's 65536 rows; filling them all
+// cost more than coding it).
 class Apm {
 public:
-    explicit Apm(std::size_t rows) : t_(rows * 33) {
-        for (std::size_t r = 0; r < rows; ++r)
-            for (int j = 0; j < 33; ++j) t_[r * 33 + static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+    explicit Apm(std::size_t rows) : t_(new std::uint16_t[rows * 33]), ready_(rows, 0) {
+        for (int j = 0; j < 33; ++j) first_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
     }
     void prefetch(std::size_t row) const noexcept {
         __builtin_prefetch(&t_[row * 33]);
         __builtin_prefetch(&t_[row * 33 + 32]);
     }
     [[gnu::always_inline]] std::int32_t refine(std::int32_t y, std::size_t row) noexcept {
-        const std::int32_t q = y + 2048, j = q >> 7, w = q & 127;
         std::uint16_t* r = &t_[row * 33];
+        if (!ready_[row]) [[unlikely]] {
+            std::copy(first_.begin(), first_.end(), r);
+            ready_[row] = 1;
+        }
+        const std::int32_t q = y + 2048, j = q >> 7, w = q & 127;
         at_ = &r[j + (w >> 6)];
         return (r[j] * (128 - w) + r[j + 1] * w) >> 7;
     }
@@ -102,7 +108,9 @@ public:
     }
 
 private:
-    std::vector<std::uint16_t> t_;
+    std::unique_ptr<std::uint16_t[]> t_;  // (rows not yet used are not initialized)
+    std::vector<std::uint8_t> ready_;
+    std::array<std::uint16_t, 33> first_{};
     std::uint16_t* at_ = nullptr;
 };
 
