@@ -206,7 +206,16 @@ public:
     /// training: the same result, less time waiting.
     [[gnu::always_inline]] void update(int bit) noexcept {
         const unsigned c0 = (c0_ << 1) | static_cast<unsigned>(bit);
-        if (bitpos_ == 3) {
+        if (bitpos_ == 2) {
+            // (the second nibble's buckets for both values of the 4th bit)
+            touch_buckets(c0 << 1);
+            touch_buckets((c0 << 1) | 1u);
+        } else if (bitpos_ == 6) {
+            // (the next byte's order-4 and order-6 buckets for both values
+            // of its last bit)
+            touch_next_orders((c0 << 1) & 0xFFu);
+            touch_next_orders(((c0 << 1) | 1u) & 0xFFu);
+        } else if (bitpos_ == 3) {
             prefetch_buckets(c0);
         } else if (bitpos_ == 7) {
             // (the byte is in the history now: the encoder's holds the whole
@@ -265,6 +274,20 @@ private:
     // a byte's first nibble, the first nibble's bits with a leading 1 for
     // the second).
     // The two candidate buckets of each context, asked of memory at once.
+    void touch_buckets(unsigned nib) const noexcept {
+        for (int k = 0; k < kContexts; ++k) {
+            const std::uint64_t g = (hash_[static_cast<std::size_t>(k)] ^ (nib * kHashB)) * kHashA;
+            __builtin_prefetch(&table_[static_cast<std::size_t>(g >> (64 - bucket_bits_)) & ~std::size_t{1}], 1);
+        }
+    }
+    void touch_next_orders(unsigned c) const noexcept {
+        const std::uint64_t c8 = (c8_ << 8) | c;
+        const std::uint64_t v[2] = {c8 & 0xFFFFFFFFu, c8 & 0xFFFFFFFFFFFFull};
+        for (int k = 0; k < 2; ++k) {
+            const std::uint64_t g = (((v[k] + static_cast<std::uint64_t>(k + 1)) * kHashA) ^ kHashB) * kHashA;
+            __builtin_prefetch(&table_[static_cast<std::size_t>(g >> (64 - bucket_bits_)) & ~std::size_t{1}], 1);
+        }
+    }
     void prefetch_buckets(unsigned nib) noexcept {
         for (int k = 0; k < kContexts; ++k) {
             const std::uint64_t g = (hash_[static_cast<std::size_t>(k)] ^ (nib * kHashB)) * kHashA;
