@@ -14,6 +14,7 @@
 #include "../src/container/block_codec.hpp"
 #include "../src/container/timed_tick.hpp"
 #include "stepzip/container.hpp"
+#include "support/block_records.hpp"
 
 namespace stepzip {
 namespace {
@@ -275,19 +276,13 @@ std::string controller_log(std::uint32_t seed) {
 // given; of any coding, or only `coding` when given) of a one-frame
 // version-2 file: its block records walked with the library's varint reader.
 std::size_t tick_blocks(const std::string& frame, int only = -1, int coding = -1) {
-    wire::Cursor cur(std::string_view(frame).substr(8));  // after the frame header
     std::size_t n = 0;
-    unsigned first = 0;
-    std::uint64_t csize = 0, dsize = 0;
-    while (cur.u8(first) && first != 0 && cur.varint(csize)) {
-        const unsigned type = first & 7u;
-        if ((type == stz::kChains || type == stz::kRaw) && !cur.varint(dsize)) break;
-        std::string_view payload;
-        if (!cur.bytes(static_cast<std::size_t>(csize) + 4, payload)) break;  // payload and block checksum
-        const unsigned sub = static_cast<unsigned char>(payload[0]);
-        if (type == stz::kExtended && (only < 0 ? sub == stz::kTickSubtype || sub == stz::kInterruptSubtype
-                                                : sub == static_cast<unsigned>(only)) &&
-            (coding < 0 || (payload.size() > 1 && static_cast<unsigned char>(payload[1]) == static_cast<unsigned>(coding))))
+    for (const test::BlockRecord& r : test::block_records(frame)) {
+        if (r.payload.empty()) continue;
+        const unsigned sub = static_cast<unsigned char>(r.payload[0]);
+        if (r.type == stz::kExtended && (only < 0 ? sub == stz::kTickSubtype || sub == stz::kInterruptSubtype
+                                                  : sub == static_cast<unsigned>(only)) &&
+            (coding < 0 || (r.payload.size() > 1 && static_cast<unsigned char>(r.payload[1]) == static_cast<unsigned>(coding))))
             ++n;
     }
     return n;

@@ -9,6 +9,7 @@
 #include "cut_cache.hpp"
 #include "encoder.hpp"
 #include "modeled_block.hpp"
+#include "raw_cm.hpp"
 #include "stepzip/segment/block_cut.hpp"
 #include "table_block.hpp"
 #include "timed_block.hpp"
@@ -1178,7 +1179,23 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         raw += job.bytes;
         if (!s.thorough || zstd_may_win(raw, best)) {
             std::string rec = make_block_record(kRaw, job.flags, raw, s.level);
-            if (beats_model(rec) && consider(kRaw, std::move(rec))) job.raw_payload = std::move(raw);
+            const bool zstd_won = beats_model(rec) && consider(kRaw, std::move(rec));
+            // From kRawCmLevel the same bytes coded by the CM raw block
+            // (type 7 subtype 3), about half zstd's size on text-like input,
+            // written when smaller than zstd's, and at least 1/32 smaller
+            // than a chain block (which decodes faster and gives the window
+            // its steps; on the random walks of corpora/ it is 1 % smaller);
+            // the job stays a raw block.
+            bool cm_won = false;
+            if (s.level >= kRawCmLevel) {
+                const std::string cm = write_raw_cm_block(raw);
+                std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
+                                         ? make_stored_record(kExtended, job.flags, cm)
+                                         : std::string();
+                const bool margin = type == kRaw || best.empty() || cm_rec.size() + cm_rec.size() / 32 < best.size();
+                cm_won = !cm_rec.empty() && margin && beats_model(cm_rec) && consider(kRaw, std::move(cm_rec));
+            }
+            if (zstd_won || cm_won) job.raw_payload = std::move(raw);
         }
     }
     if (best.empty()) {

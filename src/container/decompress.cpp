@@ -16,6 +16,7 @@
 #include "modeled_block.hpp"
 #include "../common/bytes.hpp"
 #include "memory_io.hpp"
+#include "raw_cm.hpp"
 #include "table_block.hpp"
 #include "timed_block.hpp"
 #include "timed_tick.hpp"
@@ -252,8 +253,12 @@ private:
             Block held_block;         // kept for start_history() (raw blocks: none)
             rendered.clear();
             ++info_.blocks;
-            if (b.type == kRaw) {
-                auto raw = unzstd(payload, static_cast<std::uint32_t>(b.dsize), where_);
+            // A CM raw block (type 7 subtype 3) decodes to a raw block's payload.
+            const bool cm_raw = b.type == kExtended && !payload.empty() &&
+                                static_cast<unsigned char>(payload[0]) == kRawCmSubtype;
+            if (b.type == kRaw || cm_raw) {
+                auto raw = cm_raw ? read_raw_cm_block(payload, where_ + " payload")
+                                  : unzstd(payload, static_cast<std::uint32_t>(b.dsize), where_);
                 if (!raw) return std::move(raw).error();
                 ++info_.raw_blocks;
                 Cursor cur(*raw);

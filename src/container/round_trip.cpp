@@ -7,6 +7,7 @@
 // renders to the input bytes: it is not rendered a second time.
 #include "encoder.hpp"
 #include "modeled_block.hpp"
+#include "raw_cm.hpp"
 #include "table_block.hpp"
 #include "timed_block.hpp"
 
@@ -25,7 +26,15 @@ void prove_decoded(BlockJob& job, const EncoderSettings& s, const WindowView& wi
         }
         dec = std::move(*z);
     }
-    if (rec.type == kRaw) {
+    if (rec.type == kExtended && job.type == kRaw) {  // the CM raw block
+        auto d = read_raw_cm_block(rec.payload, where);
+        if (!d) {
+            job.error = make_error(Errc::mismatch, d.error().message);
+            return;
+        }
+        dec = std::move(*d);
+    }
+    if (job.type == kRaw) {
         if (dec != job.raw_payload) job.error = make_error(Errc::mismatch, where + ": raw block differs");
         job.counts.chains = job.block.chains.size();
         job.counts.steps = job.steps;
