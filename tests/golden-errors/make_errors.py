@@ -421,6 +421,32 @@ files.update({
     'v2_light_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % l_csize,
                             first_payload_replaced(light, l_end, light[l_payload:l_end] + b'\x00')),
 })
+# The guess bit of the tick block's coding byte (docs/FORMAT.md 1.13,
+# "Guess") goes with codings 1 and 2 only: on tick.steps.stz's first block
+# (coding 0) it makes an unknown coding.
+files.update({
+    'v2_tick_guess_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 8))),
+})
+# Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
+# tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
+rcm, r_payload = first_extended_block('raw_cm.hpgl.stz', 3, 0)
+r_csize, _ = varint_at(rcm, 9)
+r_end = r_payload + r_csize
+_, r_stream = varint_at(rcm, r_payload + 2)  # D: the stream follows
+files.update({
+    # A coding other than 0.
+    'v2_raw_cm_unknown_coding': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(rcm, r_payload + 1, 1))),
+    # D above 256 MiB + 20: at D's field, before anything is decoded.
+    'v2_raw_cm_size_limit': ('limit', 'byte 8 (block 0) payload byte 2',
+                             first_payload_replaced(rcm, r_end, rcm[r_payload:r_payload + 2] +
+                                                    put_varint((256 << 20) + 21) + rcm[r_stream:r_end])),
+    # The range-coded stream lost its last byte (at the payload's new end).
+    'v2_raw_cm_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (r_csize - 1),
+                               first_payload_replaced(rcm, r_end, rcm[r_payload:r_end - 1])),
+    # A byte after the stream's end (at the added byte).
+    'v2_raw_cm_extra_byte': ('corrupt', 'byte 8 (block 0) payload byte %d' % r_csize,
+                             first_payload_replaced(rcm, r_end, rcm[r_payload:r_end] + b'\x00')),
+})
 for name, (code, where, data) in files.items():
     open(os.path.join(here, name + '.stz'), 'wb').write(data)
     open(os.path.join(here, name + '.expect'), 'w').write(code + '\n' + where + '\n')
