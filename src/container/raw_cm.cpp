@@ -274,24 +274,25 @@ private:
     // a byte's first nibble, the first nibble's bits with a leading 1 for
     // the second).
     // The two candidate buckets of each context, asked of memory at once.
+    // The hash of context k's value v, and of a nibble's bucket of it.
+    static std::uint64_t context_hash(std::uint64_t v, int k) noexcept { return (v + static_cast<std::uint64_t>(k + 1)) * kHashA; }
+    static std::uint64_t nibble_hash(std::uint64_t h, unsigned nib) noexcept { return (h ^ (nib * kHashB)) * kHashA; }
+    std::size_t bucket_of(std::uint64_t g) const noexcept { return static_cast<std::size_t>(g >> (64 - bucket_bits_)); }
+    void touch(std::uint64_t g) const noexcept { __builtin_prefetch(&table_[bucket_of(g) & ~std::size_t{1}], 1); }
+
     void touch_buckets(unsigned nib) const noexcept {
-        for (int k = 0; k < kContexts; ++k) {
-            const std::uint64_t g = (hash_[static_cast<std::size_t>(k)] ^ (nib * kHashB)) * kHashA;
-            __builtin_prefetch(&table_[static_cast<std::size_t>(g >> (64 - bucket_bits_)) & ~std::size_t{1}], 1);
-        }
+        for (int k = 0; k < kContexts; ++k) touch(nibble_hash(hash_[static_cast<std::size_t>(k)], nib));
     }
+    // (contexts 0 and 1 are the orders 4 and 6)
     void touch_next_orders(unsigned c) const noexcept {
         const std::uint64_t c8 = (c8_ << 8) | c;
-        const std::uint64_t v[2] = {c8 & 0xFFFFFFFFu, c8 & 0xFFFFFFFFFFFFull};
-        for (int k = 0; k < 2; ++k) {
-            const std::uint64_t g = (((v[k] + static_cast<std::uint64_t>(k + 1)) * kHashA) ^ kHashB) * kHashA;
-            __builtin_prefetch(&table_[static_cast<std::size_t>(g >> (64 - bucket_bits_)) & ~std::size_t{1}], 1);
-        }
+        touch(nibble_hash(context_hash(c8 & 0xFFFFFFFFu, 0), 1));
+        touch(nibble_hash(context_hash(c8 & 0xFFFFFFFFFFFFull, 1), 1));
     }
     void prefetch_buckets(unsigned nib) noexcept {
         for (int k = 0; k < kContexts; ++k) {
-            const std::uint64_t g = (hash_[static_cast<std::size_t>(k)] ^ (nib * kHashB)) * kHashA;
-            const std::size_t i = static_cast<std::size_t>(g >> (64 - bucket_bits_));
+            const std::uint64_t g = nibble_hash(hash_[static_cast<std::size_t>(k)], nib);
+            const std::size_t i = bucket_of(g);
             slot_[static_cast<std::size_t>(k)] = i;
             check_[static_cast<std::size_t>(k)] = static_cast<std::uint16_t>((g >> 16) | 1u);
             __builtin_prefetch(&table_[i & ~std::size_t{1}], 1);
@@ -392,8 +393,7 @@ private:
             join(join(join(head_fields_[pos_ - line_ >= 2 ? head_ : 256][static_cast<std::size_t>(nfield_)], static_cast<std::uint64_t>(nfield_)), field_), head_),
             join(join(join(prev2_fields_[static_cast<std::size_t>(nfield_)], static_cast<std::uint64_t>(nfield_)), field_), prev_fields_[static_cast<std::size_t>(nfield_)]),
         };
-        for (int k = 0; k < kContexts; ++k)
-            hash_[static_cast<std::size_t>(k)] = (v[k] + static_cast<std::uint64_t>(k + 1)) * kHashA;
+        for (int k = 0; k < kContexts; ++k) hash_[static_cast<std::size_t>(k)] = context_hash(v[k], k);
         prefetch_buckets(1);
         if (pos_ >= static_cast<std::size_t>(kMinLen)) {
             const std::uint64_t key = kMinLen >= 8 ? c8_ : c8_ & ((std::uint64_t{1} << (8 * kMinLen)) - 1);

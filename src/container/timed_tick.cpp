@@ -120,7 +120,6 @@ public:
     static constexpr std::int64_t kOne = std::int64_t{1} << 24;
     /// Buckets of guess(): none, a sure 1, a sure 0, kShares shares of 1.
     static constexpr int kShares = 6;
-    static constexpr int kBuckets = 3 + kShares;
 
     void clear() { valid_ = false; }
     /// A line of rate r from here on (none when r <= 0).
@@ -167,7 +166,7 @@ private:
 std::int64_t Line::rate() const {
     const std::int64_t len = p_ + q_;
     if (len == 0) return 0;
-    if (!lo_set_ || !hi_set_) return q_ * RateGuess::kOne / len;
+    if (!bounded()) return q_ * RateGuess::kOne / len;
     // A slope n/d (ones per zero) is the rate n / (n + d).
     const auto r = [](const dss::Frac& f) { return f.n * RateGuess::kOne / (f.n + f.d); };
     return (r(lo_) + r(hi_) + 1) / 2;
@@ -495,14 +494,14 @@ public:
     /// kTickGuess (mixed codings: their lines guess the next letter).
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
-          restart_((flags & kTickRestart) != 0), guess_((flags & kTickGuess) != 0) {
+          restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
     }
 
     /// A chain's start: every follower forgets.
     void start_chain() {
-        for (auto& f : axis_) f.reset(restart_, guess_);
-        for (auto& f : bres_) f.reset(restart_, guess_);
+        for (auto& f : axis_) f.reset(restart_, guessing_);
+        for (auto& f : bres_) f.reset(restart_, bres_guessing());
         moved_.fill(0);
         sign_.fill(1);
         since_.fill(0);
@@ -532,7 +531,7 @@ public:
         }
         if (order[0] != leader_) {
             leader_ = order[0];
-            for (auto& f : bres_) f.reset(restart_, guess_);
+            for (auto& f : bres_) f.reset(restart_, bres_guessing());
             moved_.fill(0);
         }
         unsigned m = 0, n = 0;
@@ -566,21 +565,21 @@ public:
                 const auto uf = static_cast<std::uint64_t>(fa);
                 // The guess flag: the axis's guessed next letter with the time
                 // since its last step, in place of its last interval.
-                mix_context(io_, 3, guess_ ? ctx_join(ctx_join(ax, 9), (static_cast<std::uint64_t>(f.guess()) << 22) |
+                mix_context(io_, 3, guessing_ ? ctx_join(ctx_join(ax, 9), (static_cast<std::uint64_t>(f.guess()) << 22) |
                                                                            (capped(since_[ua]) << 12) | uf)
                                            : ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
                 // Coding 2: where the axis's line broke, in place of its admitted set
                 // and b (which the primary context holds). The guess flag, on an
                 // interrupt block's axis that follows the leader: where in the
                 // leader's interval its Bresenham line steps (crossing()).
-                if (guess_ && windows_ && i > 0)
+                if (guessing_ && windows_ && i > 0)
                     mix_context(io_, 4, ctx_join(ctx_join(ax, 10), crossing_context(ua, fa)));
                 else
                     mix_context(io_, 4, ctx_join(ctx_join(ax, 5), sure_ ? (f.breaks() << 2) | uf : (uf << 2) | static_cast<std::uint64_t>(ba)));
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
                 const auto& g = gaps_[ua];
                 const std::uint64_t tr = static_cast<std::uint64_t>(trend(since_[ua] + 1, g));
-                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guess_ ? (tr << 12) | (static_cast<std::uint64_t>(f.guess()) << 4) | uf
+                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (static_cast<std::uint64_t>(f.guess()) << 4) | uf
                                                                      : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
             }
@@ -640,6 +639,10 @@ private:
         return wa == 2 && lead_step ? 2 : 3;
     }
 
+    // Whether the followers B[a] keep a guess: only an interrupt block's
+    // crossing context reads it (a tick block's would be work unread).
+    bool bres_guessing() const { return guessing_ && windows_; }
+
     // The guess flag, axis `ua` of an interrupt block that follows the
     // leader: a step now against the tick where its Bresenham line
     // (bres_) crosses to its next step, that line's crossing() as a share
@@ -691,7 +694,7 @@ private:
     bool windows_;
     bool sure_;     // coding 2
     bool restart_;  // the coding flag kTickRestart
-    bool guess_;    // the coding flag kTickGuess
+    bool guessing_;  // the coding flag kTickGuess
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -745,7 +748,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     }
     std::string out;
     put_u8(out, subtype);
-    flags &= coding == TickCoding::plain ? kTickRestart : kTickFlags;
+    flags &= tick_flags(coding);
     put_u8(out, static_cast<unsigned>(coding) | flags);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
@@ -785,10 +788,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
     const bool windows = subtype == kInterruptSubtype;
-    // The guess flag goes with a mixed coding only.
-    const auto is = [&](TickCoding c) {
-        return (coding & ~(c == TickCoding::plain ? kTickRestart : kTickFlags)) == static_cast<unsigned>(c);
-    };
+    const auto is = [&](TickCoding c) { return (coding & ~tick_flags(c)) == static_cast<unsigned>(c); };
     if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));

@@ -42,6 +42,10 @@ inline constexpr unsigned kTickGuess = 8;
 /// The coding byte's flags the encoder sets (kTickGuess only on a mixed
 /// coding).
 inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess;
+/// The flags that may go with `coding`: the guess flag with a mixed one only.
+inline constexpr unsigned tick_flags(TickCoding coding) {
+    return coding == TickCoding::plain ? kTickRestart : kTickFlags;
+}
 
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
