@@ -244,6 +244,54 @@ TEST(ContainerRoundTrip, PatentStatisticsAreStoredInTheFrame) {
     EXPECT_EQ(seen->checksum, made->checksum);
 }
 
+// -L 19 implies the optimal segmenter on two-axis frames only; frames of
+// more axes are cut greedily (the frame header says so), and a segmenter
+// named is used whatever the axes.
+TEST(ContainerRoundTrip, LevelNineteenCutsMoreThanTwoAxesGreedily) {
+    for (int axes : {2, 3, 4}) {
+        Chain joined;
+        joined.axes = axes;
+        for (const Chain& c : random_chains(20 + axes, 30, false, axes))
+            joined.steps.insert(joined.steps.end(), c.steps.begin(), c.steps.end());
+        const std::string input = must_text(InputFormat::steps, {joined});
+        for (bool named : {false, true}) {
+            CompressOptions opt;
+            opt.format = InputFormat::steps;
+            opt.level = 19;
+            if (named) opt.segmenter = SegmenterKind::optimal;
+            std::string frame;
+            std::size_t pos = 0;
+            ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
+                const std::size_t n = std::min(cap, input.size() - pos);
+                std::copy_n(input.data() + pos, n, buf);
+                pos += n;
+                return n;
+            };
+            WriteFn out = [&](std::string_view b) -> Result<void> {
+                frame += b;
+                return {};
+            };
+            auto made = compress_stream(in, out, opt);
+            ASSERT_TRUE(made.ok()) << made.error().message;
+            const SegmenterKind want = named || axes == 2 ? SegmenterKind::optimal : SegmenterKind::greedy;
+            EXPECT_EQ(made->segmenter, want) << axes << (named ? " named" : "");
+            pos = 0;
+            ReadFn fin = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
+                const std::size_t n = std::min(cap, frame.size() - pos);
+                std::copy_n(frame.data() + pos, n, buf);
+                pos += n;
+                return n;
+            };
+            auto seen = inspect_stream(fin);
+            ASSERT_TRUE(seen.ok()) << seen.error().message;
+            EXPECT_EQ(seen->segmenter, want) << axes << (named ? " named" : "");
+            auto back = decompress(frame);
+            ASSERT_TRUE(back.ok()) << back.error().message;
+            EXPECT_EQ(*back, input) << axes;
+        }
+    }
+}
+
 std::string slurp(const std::filesystem::path& p) {
     std::ifstream f(p, std::ios::binary);
     std::ostringstream s;

@@ -95,7 +95,7 @@ int cmd_compress(const std::vector<std::string>& args) {
         ("profile", po::value(&profile), "eval4|eval8|patent|grbl|marlin|auto (default auto: "
                                           "smallest output on the first block)")
         ("segmenter", po::value(&segmenter), "greedy|optimal|patent (default: greedy below "
-                                             "-L 19, optimal at 19)")
+                                             "-L 19, optimal at 19 for two axes)")
         ("level,L", po::value(&level), "1 (fastest) .. 19 (smallest), default 3, also as -1 .. -19; "
                                        "1-9 write table blocks (fast to decode; dense contours "
                                        "also try the step model from 3), the profile and cut "

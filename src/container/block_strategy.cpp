@@ -129,6 +129,36 @@ bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_pa
     return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
+// The CM raw block (raw_cm.hpp) codes a block's bytes whole against a
+// chain block `best` only where it may come out smaller: bytes of at most
+// 2 kRawCmProbeBytes always; more, when its model codes kRawCmStretches
+// stretches spread evenly over them (1/kRawCmProbeShare of them, at least
+// kRawCmProbeBytes in all, one after the other) under kRawCmReach tenths
+// of `best` scaled to that share. Per byte the stretches cost its model
+// 1.00-1.12 times what the whole block's bytes do on the random walks and
+// 3-axis step logs of corpora/ and 1.27 times on corpora/plotter/gnuplot.hpgl
+// (text: more to learn); the whole is kept only when 1/32 under `best`, so
+// stretches at 1.3 times `best` leave it no chance. On 3-axis step logs
+// read as steps the stretches came to 1.41-1.63 times `best` and the whole
+// to 1.28-1.57; coding the whole was half of -L 19's time there.
+constexpr std::size_t kRawCmProbeBytes = 32768;
+constexpr std::size_t kRawCmProbeShare = 8;
+constexpr std::size_t kRawCmStretches = 8;
+constexpr std::size_t kRawCmReach = 13;  // tenths
+
+bool raw_cm_may_win(std::string_view raw, const std::string& best) {
+    if (best.empty() || raw.size() <= 2 * kRawCmProbeBytes) return true;
+    const std::size_t each = std::max(raw.size() / kRawCmProbeShare, kRawCmProbeBytes) / kRawCmStretches;
+    std::string probe;
+    probe.reserve(each * kRawCmStretches);
+    for (std::size_t k = 0; k < kRawCmStretches; ++k) probe += raw.substr(raw.size() / kRawCmStretches * k, each);
+    const std::string coded = write_raw_cm_block(probe);
+    if (coded.empty()) return true;
+    // coded / probe bytes < kRawCmReach / 10 * best / raw bytes
+    return static_cast<double>(coded.size()) * 10.0 * static_cast<double>(raw.size()) <
+           static_cast<double>(kRawCmReach) * static_cast<double>(best.size()) * static_cast<double>(probe.size());
+}
+
 // The chains of `block` in eight stretches spread evenly over it, about
 // `limit` steps in all: calls take(i, n) for each chain i of a stretch,
 // where n (at least 1) is the number of steps the stretch still wants.
@@ -834,6 +864,15 @@ int window_log_for_level(int level) {
 
 Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     s.axes = first.axes;
+    // The optimal segmenter implied by the level cuts two-axis frames only:
+    // on more axes each start reads up to 1024 steps through the general
+    // run-word recognizer, 90 % of -L 19's time on a 3-axis log of 85 kB
+    // (1.3 s), and on the 3- and 4-axis logs measured (corpora/stepper,
+    // corpora/timed read as steps, the 3-axis timed stream of
+    // docs/benchmarks.md) its blocks came out the same bytes as the greedy
+    // cut's but one, 0.3 % smaller (docs/benchmarks.md "The optimal
+    // segmenter on more axes").
+    if (!s.segmenter_named && s.segmenter == SegmenterKind::optimal && first.axes > 2) s.segmenter = SegmenterKind::greedy;
     std::optional<Profile> dense;
     if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
         // (a small first block left to the context-mixing step model)
@@ -1184,10 +1223,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             // (type 7 subtype 3), about half zstd's size on text-like input,
             // written when smaller than zstd's, and at least 1/32 smaller
             // than a chain block (which decodes faster and gives the window
-            // its steps; on the random walks of corpora/ it is 1 % smaller);
-            // the job stays a raw block.
+            // its steps; on the random walks of corpora/ it is 1 % smaller),
+            // coded whole against a chain block only where a sample of it
+            // says it may be (raw_cm_may_win()); the job stays a raw block.
             bool cm_won = false;
-            if (s.level >= kRawCmLevel) {
+            if (s.level >= kRawCmLevel && (type == kRaw || raw_cm_may_win(raw, best))) {
                 const std::string cm = write_raw_cm_block(raw);
                 std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
                                          ? make_stored_record(kExtended, job.flags, cm)

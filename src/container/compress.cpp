@@ -97,6 +97,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     s.profile = opt.profile.value_or(Profile::eval8);
     s.profile_named = opt.profile.has_value();
     s.segmenter = opt.segmenter.value_or(implied_segmenter(opt.level));
+    s.segmenter_named = opt.segmenter.has_value();
     s.level = opt.level;
     s.source = opt.source;
     s.allow_raw = opt.allow_raw;
@@ -137,6 +138,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         info.profile = s.profile;
         info.format = *format;
         info.axes = s.axes;
+        info.segmenter = s.segmenter;  // (choose_frame_settings() may have changed it)
         info.window = h.window();
         return out(header);
     };

@@ -55,6 +55,7 @@ struct TimedCheck {
 struct EncoderSettings {
     Profile profile = Profile::eval8;
     bool profile_named = false;
+    bool segmenter_named = false;  ///< --segmenter given (else implied by the level and the axes)
     SegmenterKind segmenter = SegmenterKind::greedy;
     int level = 3;
     int axes = 2;
