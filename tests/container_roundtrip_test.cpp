@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 
@@ -191,14 +192,7 @@ TEST(ContainerRoundTrip, ControllerLinesCostOneSegmentPerVectorWithoutPhase) {
     opt.profile = Profile::grbl;
     auto z = compress(input, opt);
     ASSERT_TRUE(z.ok()) << z.error().message;
-    std::size_t pos = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, z->size() - pos);
-        std::copy_n(z->data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
-    auto info = inspect_stream(in);
+    auto info = inspect_stream(stz::memory_reader(*z));
     ASSERT_TRUE(info.ok()) << info.error().message;
     EXPECT_EQ(info->raw_blocks, 0u);
     EXPECT_EQ(info->chains, 1u);
@@ -214,28 +208,10 @@ TEST(ContainerRoundTrip, PatentStatisticsAreStoredInTheFrame) {
     opt.segmenter = SegmenterKind::patent;
     // Count through compress_stream, read back through inspect_stream.
     std::string frame;
-    std::size_t pos = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, input.size() - pos);
-        std::copy_n(input.data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
-    WriteFn out = [&](std::string_view b) -> Result<void> {
-        frame += b;
-        return {};
-    };
-    auto made = compress_stream(in, out, opt);
+    auto made = compress_stream(stz::memory_reader(input), stz::string_writer(frame), opt);
     ASSERT_TRUE(made.ok()) << made.error().message;
     EXPECT_GT(made->stats.patent_segments, 0u);
-    pos = 0;
-    ReadFn fin = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, frame.size() - pos);
-        std::copy_n(frame.data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
-    auto seen = inspect_stream(fin);
+    auto seen = inspect_stream(stz::memory_reader(frame));
     ASSERT_TRUE(seen.ok()) << seen.error().message;
     EXPECT_EQ(seen->segmenter, SegmenterKind::patent);
     EXPECT_EQ(seen->stats.patent_segments, made->stats.patent_segments);
@@ -260,29 +236,11 @@ TEST(ContainerRoundTrip, LevelNineteenCutsMoreThanTwoAxesGreedily) {
             opt.level = 19;
             if (named) opt.segmenter = SegmenterKind::optimal;
             std::string frame;
-            std::size_t pos = 0;
-            ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-                const std::size_t n = std::min(cap, input.size() - pos);
-                std::copy_n(input.data() + pos, n, buf);
-                pos += n;
-                return n;
-            };
-            WriteFn out = [&](std::string_view b) -> Result<void> {
-                frame += b;
-                return {};
-            };
-            auto made = compress_stream(in, out, opt);
+            auto made = compress_stream(stz::memory_reader(input), stz::string_writer(frame), opt);
             ASSERT_TRUE(made.ok()) << made.error().message;
             const SegmenterKind want = named || axes == 2 ? SegmenterKind::optimal : SegmenterKind::greedy;
             EXPECT_EQ(made->segmenter, want) << axes << (named ? " named" : "");
-            pos = 0;
-            ReadFn fin = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-                const std::size_t n = std::min(cap, frame.size() - pos);
-                std::copy_n(frame.data() + pos, n, buf);
-                pos += n;
-                return n;
-            };
-            auto seen = inspect_stream(fin);
+            auto seen = inspect_stream(stz::memory_reader(frame));
             ASSERT_TRUE(seen.ok()) << seen.error().message;
             EXPECT_EQ(seen->segmenter, want) << axes << (named ? " named" : "");
             auto back = decompress(frame);

@@ -12,6 +12,7 @@
 #include <new>
 #include <string>
 
+#include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/interpolate/arc.hpp"
@@ -294,13 +295,8 @@ TEST(HardeningLimits, LargeFrameDecodesBlockByBlockInBoundedMemory) {
     const std::string frame = make_frame(text, std::size_t{1} << 13);
     ASSERT_FALSE(frame.empty());
     EXPECT_LT(frame.size(), text.size() / 100);
-    std::size_t pos = 0, written = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t k = std::min(cap, frame.size() - pos);
-        std::copy_n(frame.data() + pos, k, buf);
-        pos += k;
-        return k;
-    };
+    std::size_t written = 0;
+    const ReadFn in = stz::memory_reader(frame);
     WriteFn out = [&](std::string_view b) -> Result<void> {
         written += b.size();
         return {};

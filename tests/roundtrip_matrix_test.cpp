@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "../src/segment/internal.hpp"
+#include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 
@@ -190,14 +191,7 @@ const Inputs& inputs_for(InputFormat format, int axes, bool four) {
 }
 
 Result<FrameInfo> inspect(const std::string& frame) {
-    std::size_t pos = 0;
-    ReadFn in = [&](char* buf, std::size_t cap) -> Result<std::size_t> {
-        const std::size_t n = std::min(cap, frame.size() - pos);
-        std::copy_n(frame.data() + pos, n, buf);
-        pos += n;
-        return n;
-    };
-    return inspect_stream(in, "matrix");
+    return inspect_stream(stz::memory_reader(frame), "matrix");
 }
 
 struct Case {
