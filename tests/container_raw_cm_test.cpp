@@ -15,6 +15,7 @@
 
 #include "../src/common/bytes.hpp"
 #include "../src/container/block_codec.hpp"
+#include "../src/container/encoder.hpp"
 #include "../src/container/raw_cm.hpp"
 #include "stepzip/container.hpp"
 #include "support/block_records.hpp"
@@ -105,6 +106,24 @@ std::vector<std::pair<unsigned, unsigned>> block_kinds(const std::string& frame)
     for (const test::BlockRecord& r : test::block_records(frame))
         kinds.emplace_back(r.type, r.payload.empty() ? 256u : static_cast<unsigned char>(r.payload[0]));
     return kinds;
+}
+
+// Against a chain block the CM raw block is coded whole only where its
+// model's stretches say it may win: on the HP-GL text (its stretches cost
+// about 1.27 times the whole per byte) a chain block twice its size or
+// 1/16 over it leaves it in, one of half or nine tenths of its size does
+// not (the whole cannot win there either); small content
+// and no chain block always leave it in.
+TEST(RawCmBlock, CodedWholeAgainstAChainBlockOnlyWhereItMayWin) {
+    const std::string gp = corpus("plotter/gnuplot.hpgl");
+    const std::size_t cm = stz::write_raw_cm_block(gp).size();
+    ASSERT_GT(cm, 0u);
+    EXPECT_TRUE(stz::raw_cm_may_win(gp, 2 * cm));
+    EXPECT_TRUE(stz::raw_cm_may_win(gp, cm + cm / 16));
+    EXPECT_FALSE(stz::raw_cm_may_win(gp, cm / 2));
+    EXPECT_FALSE(stz::raw_cm_may_win(gp, cm * 9 / 10));
+    EXPECT_TRUE(stz::raw_cm_may_win(gp, 0));
+    EXPECT_TRUE(stz::raw_cm_may_win(std::string_view(gp).substr(0, 60000), 1));
 }
 
 // HP-GL text read as steps is written raw; from -L 3 the CM raw block takes

@@ -129,8 +129,8 @@ bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_pa
     return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
-// The CM raw block (raw_cm.hpp) codes a block's bytes whole against a
-// chain block `best` only where it may come out smaller: bytes of at most
+// raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes
+// whole against a chain block `best` only where it may come out smaller: bytes of at most
 // 2 kRawCmProbeBytes always; more, when its model codes kRawCmStretches
 // stretches spread evenly over them (1/kRawCmProbeShare of them, at least
 // kRawCmProbeBytes in all, one after the other) under kRawCmReach tenths
@@ -145,19 +145,6 @@ constexpr std::size_t kRawCmProbeBytes = 32768;
 constexpr std::size_t kRawCmProbeShare = 8;
 constexpr std::size_t kRawCmStretches = 8;
 constexpr std::size_t kRawCmReach = 13;  // tenths
-
-bool raw_cm_may_win(std::string_view raw, const std::string& best) {
-    if (best.empty() || raw.size() <= 2 * kRawCmProbeBytes) return true;
-    const std::size_t each = std::max(raw.size() / kRawCmProbeShare, kRawCmProbeBytes) / kRawCmStretches;
-    std::string probe;
-    probe.reserve(each * kRawCmStretches);
-    for (std::size_t k = 0; k < kRawCmStretches; ++k) probe += raw.substr(raw.size() / kRawCmStretches * k, each);
-    const std::string coded = write_raw_cm_block(probe);
-    if (coded.empty()) return true;
-    // coded / probe bytes < kRawCmReach / 10 * best / raw bytes
-    return static_cast<double>(coded.size()) * 10.0 * static_cast<double>(raw.size()) <
-           static_cast<double>(kRawCmReach) * static_cast<double>(best.size()) * static_cast<double>(probe.size());
-}
 
 // The chains of `block` in eight stretches spread evenly over it, about
 // `limit` steps in all: calls take(i, n) for each chain i of a stretch,
@@ -845,6 +832,19 @@ void take_cm_first(BlockJob& job, const std::string& model) {
 
 }  // namespace
 
+bool raw_cm_may_win(std::string_view raw, std::size_t best) {
+    if (best == 0 || raw.size() <= 2 * kRawCmProbeBytes) return true;
+    const std::size_t each = std::max(raw.size() / kRawCmProbeShare, kRawCmProbeBytes) / kRawCmStretches;
+    std::string probe;
+    probe.reserve(each * kRawCmStretches);
+    for (std::size_t k = 0; k < kRawCmStretches; ++k) probe += raw.substr(raw.size() / kRawCmStretches * k, each);
+    const std::string coded = write_raw_cm_block(probe);
+    if (coded.empty()) return true;
+    // coded / probe bytes < kRawCmReach / 10 * best / raw bytes
+    return static_cast<double>(coded.size()) * 10.0 * static_cast<double>(raw.size()) <
+           static_cast<double>(kRawCmReach) * static_cast<double>(best) * static_cast<double>(probe.size());
+}
+
 TableEffort table_effort(int level) {
     TableEffort e;
     e.recent_search = level <= 1 ? 16 : level <= 3 ? 64 : level <= 6 ? 256 : 1024;
@@ -1227,7 +1227,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             // coded whole against a chain block only where a sample of it
             // says it may be (raw_cm_may_win()); the job stays a raw block.
             bool cm_won = false;
-            if (s.level >= kRawCmLevel && (type == kRaw || raw_cm_may_win(raw, best))) {
+            if (s.level >= kRawCmLevel && (type == kRaw || raw_cm_may_win(raw, best.size()))) {
                 const std::string cm = write_raw_cm_block(raw);
                 std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
                                          ? make_stored_record(kExtended, job.flags, cm)
