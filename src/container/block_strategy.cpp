@@ -129,18 +129,18 @@ bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_pa
     return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
-// raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes
-// whole against a chain block `best` only where it may come out smaller: bytes of at most
-// 2 kRawCmProbeBytes always; more, when its model codes kRawCmStretches
+// raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes whole
+// against a chain block `best` only where it may come out smaller: bytes of at
+// most 2 kRawCmProbeBytes always; more, when its model codes kRawCmStretches
 // stretches spread evenly over them (1/kRawCmProbeShare of them, at least
-// kRawCmProbeBytes in all, one after the other) under kRawCmReach tenths
-// of `best` scaled to that share. Per byte the stretches cost its model
-// 1.00-1.12 times what the whole block's bytes do on the random walks and
-// 3-axis step logs of corpora/ and 1.27 times on corpora/plotter/gnuplot.hpgl
-// (text: more to learn); the whole is kept only when 1/32 under `best`, so
-// stretches at 1.3 times `best` leave it no chance. On 3-axis step logs
-// read as steps the stretches came to 1.41-1.63 times `best` and the whole
-// to 1.28-1.57; coding the whole was half of -L 19's time there.
+// kRawCmProbeBytes in all, one after the other) under kRawCmReach tenths of
+// `best` scaled to that share. Per byte the stretches cost its model 1.00-1.12
+// times what the whole block's bytes do on the random walks and 3-axis step
+// logs of corpora/ and 1.27 times on corpora/plotter/gnuplot.hpgl (text: more
+// to learn); the whole is kept only when 1/32 under `best`, so stretches at 1.3
+// times `best` leave it no chance. On 3-axis step logs read as steps the
+// stretches came to 1.41-1.63 times `best` and the whole to 1.28-1.57; coding
+// the whole was half of -L 19's time there.
 constexpr std::size_t kRawCmProbeBytes = 32768;
 constexpr std::size_t kRawCmProbeShare = 8;
 constexpr std::size_t kRawCmStretches = 8;
