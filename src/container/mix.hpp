@@ -76,6 +76,17 @@ struct StretchTable {
 };
 inline constexpr StretchTable kStretch{};
 
+/// 2^16 / (n + 1.5) for n = 0..N-1: the rate of an adaptive counter seen n
+/// times (lpaq1's StateMap), read by the context-mixing step model and the
+/// CM raw block.
+template <int N>
+struct RecipTable {
+    std::int32_t v[N];
+    constexpr RecipTable() : v() {
+        for (int n = 0; n < N; ++n) v[n] = static_cast<std::int32_t>(131072 / (2 * n + 3));
+    }
+};
+
 // The hashed models' adaptation: as section 1.4's with the shift capped at
 // 6 instead of 5 (they see fewer bits each).
 inline constexpr detail::ShiftTable<6> kSlowShift{};

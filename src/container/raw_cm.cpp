@@ -33,13 +33,7 @@ constexpr int kInputs = kContexts + 4; // + order 1, order 0, match, bias
 constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
 // Adaptive rate of a counter seen n times: 65536 / (n + 1.5).
-struct RateTable {
-    std::int32_t v[1024];
-    constexpr RateTable() : v() {
-        for (int n = 0; n < 1024; ++n) v[n] = 131072 / (2 * n + 3);
-    }
-};
-constexpr RateTable kRate{};
+constexpr mixdetail::RecipTable<1024> kRate{};
 
 // A counter: probability of a 1 (16 bits, stored XOR 0x8000 so that zero
 // memory is p = 32768) and how often it was seen (saturating at `limit`).

@@ -59,14 +59,8 @@ constexpr std::int32_t kMaxWeight = 1 << 22;
 constexpr int kApmRate = 7;
 constexpr int kMinRowBits = 12, kMaxRowBits = 21;
 
-// 2^16 / (n + 1.5): the counters' rates (StateMap-like, lpaq1).
-struct RecipTable {
-    std::int32_t v[kCountLimit + 1];
-    constexpr RecipTable() : v() {
-        for (int n = 0; n <= kCountLimit; ++n) v[n] = static_cast<std::int32_t>(131072 / (2 * n + 3));
-    }
-};
-constexpr RecipTable kRecip{};
+// The counters' rates (StateMap-like, lpaq1).
+constexpr mixdetail::RecipTable<kCountLimit + 1> kRecip{};
 
 // A counter: probability of a 1 in the high 22 bits, count in the low 10.
 constexpr std::uint32_t kCounterInit = std::uint32_t{1} << 31;
