@@ -563,10 +563,10 @@ public:
                 mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
                 mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
                 const auto uf = static_cast<std::uint64_t>(fa);
+                const auto guess = guessing_ ? static_cast<std::uint64_t>(f.guess()) : 0u;  // (models 3 and 6)
                 // The guess flag: the axis's guessed next letter with the time
                 // since its last step, in place of its last interval.
-                mix_context(io_, 3, guessing_ ? ctx_join(ctx_join(ax, 9), (static_cast<std::uint64_t>(f.guess()) << 22) |
-                                                                           (capped(since_[ua]) << 12) | uf)
+                mix_context(io_, 3, guessing_ ? ctx_join(ctx_join(ax, 9), (guess << 22) | (capped(since_[ua]) << 12) | uf)
                                            : ctx_join(ctx_join(ax, 4), (capped(since_[ua]) << 10) | capped(gap_[ua])));
                 // Coding 2: where the axis's line broke, in place of its admitted set
                 // and b (which the primary context holds). The guess flag, on an
@@ -579,7 +579,7 @@ public:
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
                 const auto& g = gaps_[ua];
                 const std::uint64_t tr = static_cast<std::uint64_t>(trend(since_[ua] + 1, g));
-                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (static_cast<std::uint64_t>(f.guess()) << 4) | uf
+                mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (guess << 4) | uf
                                                                      : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
             }
