@@ -12,6 +12,7 @@
 #include "../src/container/block_codec.hpp"
 #include "../src/common/bytes.hpp"
 #include "stepzip/container.hpp"
+#include "support/files.hpp"
 
 namespace stepzip {
 namespace {
@@ -197,12 +198,7 @@ TEST(ContainerErrors, PhaseOutsideItsRangeIsCorrupt) {
     EXPECT_TRUE(r.error().code == Errc::checksum || r.error().code == Errc::corrupt);
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::ostringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
+using test::slurp;
 
 // Each NAME.expect holds the error code's name on its first line and, on the
 // second, where the decoder must report it ("byte N", the frame offset, and

@@ -12,17 +12,12 @@
 
 #include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
+#include "support/files.hpp"
 
 namespace stepzip {
 namespace {
 
-std::string corpus(const char* rel) {
-    std::ifstream f(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / rel, std::ios::binary);
-    std::ostringstream s;
-    s << f.rdbuf();
-    EXPECT_FALSE(s.str().empty()) << rel;
-    return s.str();
-}
+using test::corpus;
 
 struct Coded {
     std::string frame;

@@ -16,6 +16,7 @@
 #include "../src/container/modeled_block.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/segmenter.hpp"
+#include "support/files.hpp"
 
 namespace stepzip::stz {
 namespace {
@@ -153,12 +154,7 @@ TEST(StepModel, RoundTripsFourAndEightConnectedChains) {
     EXPECT_TRUE(write_step_model(random_block(3, 5, false, 3)).empty());
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::ostringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
+using test::slurp;
 
 // The first block of a corpus file (at most `steps` steps).
 Block corpus_block(const char* rel, std::size_t steps) {

@@ -19,20 +19,13 @@
 #include "../src/container/raw_cm.hpp"
 #include "stepzip/container.hpp"
 #include "support/block_records.hpp"
+#include "support/files.hpp"
 
 namespace stepzip {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
-
-std::string corpus(const char* name) {
-    return slurp(std::filesystem::path(STEPZIP_SOURCE_DIR) / "corpora" / name);
-}
+using test::corpus;
+using test::slurp;
 
 // HP-GL as a plotter driver writes it: pen moves along curves, labels.
 std::string hpgl_text(std::uint32_t seed, std::size_t lines) {

@@ -12,6 +12,7 @@
 #include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
+#include "support/files.hpp"
 
 namespace stepzip {
 namespace {
@@ -250,12 +251,7 @@ TEST(ContainerRoundTrip, LevelNineteenCutsMoreThanTwoAxesGreedily) {
     }
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::ostringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
+using test::slurp;
 
 TEST(ContainerGolden, EveryGoldenFileDecodesToItsOriginal) {
     // tests/golden/NAME.stz (format version 1) and tests/golden/v2/NAME.stz
