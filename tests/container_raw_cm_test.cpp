@@ -119,6 +119,20 @@ TEST(RawCmBlock, CodedWholeAgainstAChainBlockOnlyWhereItMayWin) {
     EXPECT_TRUE(stz::raw_cm_may_win(std::string_view(gp).substr(0, 60000), 1));
 }
 
+// Where the model does not learn (a random walk: its stretches cost what the
+// whole does per byte), the whole is coded only when the stretches already
+// come 1/32 under `best`: not against a block of the whole's own size (the
+// 1.3 reach of text would code it, for nothing), but against one twice its
+// size.
+TEST(RawCmBlock, CodedWholeWhereItDoesNotLearnOnlyWhenItWinsOnTheSample) {
+    const std::string walk = corpus("random/walk-8.fc");
+    const std::size_t cm = stz::write_raw_cm_block(walk).size();
+    ASSERT_GT(walk.size(), 65536u);
+    EXPECT_FALSE(stz::raw_cm_may_win(walk, cm));
+    EXPECT_FALSE(stz::raw_cm_may_win(walk, cm + cm / 64));
+    EXPECT_TRUE(stz::raw_cm_may_win(walk, 2 * cm));
+}
+
 // HP-GL text read as steps is written raw; from -L 3 the CM raw block takes
 // it (about half zstd's size), at -L 1 zstd's raw block (type 2) still does.
 TEST(RawCmBlock, EncoderPicksItOnHpglText) {

@@ -130,21 +130,30 @@ bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_pa
 }
 
 // raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes whole
-// against a chain block `best` only where it may come out smaller: bytes of at
-// most 2 kRawCmProbeBytes always; more, when its model codes kRawCmStretches
-// stretches spread evenly over them (1/kRawCmProbeShare of them, at least
-// kRawCmProbeBytes in all, one after the other) under kRawCmReach tenths of
-// `best` scaled to that share. Per byte the stretches cost its model 1.00-1.12
-// times what the whole block's bytes do on the random walks and 3-axis step
-// logs of corpora/ and 1.27 times on corpora/plotter/gnuplot.hpgl (text: more
-// to learn); the whole is kept only when 1/32 under `best`, so stretches at 1.3
-// times `best` leave it no chance. On 3-axis step logs read as steps the
-// stretches came to 1.41-1.63 times `best` and the whole to 1.28-1.57; coding
-// the whole was half of -L 19's time there.
+// against a block `best` (a chain block, or zstd of the bytes) only where it
+// may come out smaller: bytes of at most 2 kRawCmProbeBytes always; more,
+// when its model codes kRawCmStretches stretches spread evenly over them
+// (1/kRawCmProbeShare of them, at least kRawCmProbeBytes in all, one after
+// the other) under a reach of `best` scaled to that share. Where the model
+// learns (the stretches' second half costs it at least 1/kRawCmLearns less
+// per byte than their first), the reach is kRawCmReach tenths: per byte the
+// stretches cost it 1.27 times what the whole block's bytes do on
+// corpora/plotter/gnuplot.hpgl (text: much to learn), 1.36-1.56 on contours
+// and plots, and against a chain block the whole is kept only when 1/32
+// under it, so stretches at 1.3 times `best` leave it no chance. Where it
+// does not learn (random walks, step logs: the second half costs what the
+// first does, or more) the stretches cost 1.003-1.005 times the whole on
+// the random walks of corpora/ and the reach is 31/32: on those walks the
+// whole came within 1 % of the step model and of zstd's Huffman-coded
+// bytes, was never kept against the step model and was two thirds of -L 3's
+// and -L 19's time (docs/benchmarks.md "The CM raw block on random walks").
+// On 3-axis step logs read as steps the stretches came to 1.41-1.63 times
+// `best` and the whole to 1.28-1.57.
 constexpr std::size_t kRawCmProbeBytes = 32768;
 constexpr std::size_t kRawCmProbeShare = 8;
 constexpr std::size_t kRawCmStretches = 8;
 constexpr std::size_t kRawCmReach = 13;  // tenths
+constexpr std::size_t kRawCmLearns = 32;
 
 // The chains of `block` in eight stretches spread evenly over it, about
 // `limit` steps in all: calls take(i, n) for each chain i of a stretch,
@@ -838,11 +847,19 @@ bool raw_cm_may_win(std::string_view raw, std::size_t best) {
     std::string probe;
     probe.reserve(each * kRawCmStretches);
     for (std::size_t k = 0; k < kRawCmStretches; ++k) probe += raw.substr(raw.size() / kRawCmStretches * k, each);
-    const std::string coded = write_raw_cm_block(probe);
+    std::size_t half = 0;
+    const std::string coded = write_raw_cm_block(probe, &half);
     if (coded.empty()) return true;
-    // coded / probe bytes < kRawCmReach / 10 * best / raw bytes
-    return static_cast<double>(coded.size()) * 10.0 * static_cast<double>(raw.size()) <
-           static_cast<double>(kRawCmReach) * static_cast<double>(best) * static_cast<double>(probe.size());
+    // (bytes per input byte of the two halves: the first holds the header's
+    // few bytes too)
+    const std::size_t first_in = probe.size() / 2, second_in = probe.size() - first_in;
+    const std::size_t second = coded.size() > half ? coded.size() - half : 0;
+    const bool learns = static_cast<double>(second) * static_cast<double>(first_in) * kRawCmLearns <
+                        static_cast<double>(half) * static_cast<double>(second_in) * (kRawCmLearns - 1);
+    // coded / probe bytes < reach * best / raw bytes
+    const double reach = learns ? static_cast<double>(kRawCmReach) / 10.0 : 31.0 / 32.0;
+    return static_cast<double>(coded.size()) * static_cast<double>(raw.size()) <
+           reach * static_cast<double>(best) * static_cast<double>(probe.size());
 }
 
 TableEffort table_effort(int level) {
@@ -1224,10 +1241,12 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             // written when smaller than zstd's, and at least 1/32 smaller
             // than a chain block (which decodes faster and gives the window
             // its steps; on the random walks of corpora/ it is 1 % smaller),
-            // coded whole against a chain block only where a sample of it
-            // says it may be (raw_cm_may_win()); the job stays a raw block.
+            // coded whole only where a sample of it says it may be
+            // (raw_cm_may_win(); against zstd's block too: on random walks
+            // it came 0.6 % under it at a third of the speed); the job stays
+            // a raw block.
             bool cm_won = false;
-            if (s.level >= kRawCmLevel && (type == kRaw || raw_cm_may_win(raw, best.size()))) {
+            if (s.level >= kRawCmLevel && raw_cm_may_win(raw, best.size())) {
                 const std::string cm = write_raw_cm_block(raw);
                 std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
                                          ? make_stored_record(kExtended, job.flags, cm)

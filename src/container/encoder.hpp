@@ -136,10 +136,12 @@ TableEffort table_effort(int level);
 int window_log_for_level(int level);
 
 /// Whether the CM raw block coding the raw block content `raw` whole may
-/// come out 1/32 under a chain block of `best` bytes (0: none): true for
-/// `raw` of at most 64 KiB; else whether its model codes eight stretches
-/// spread over `raw` (an eighth of it, at least 32 KiB) under 1.3 times
-/// `best` scaled to their share (block_strategy.cpp says why).
+/// come out under a block of `best` bytes (0: none; 1/32 under a chain
+/// block): true for `raw` of at most 64 KiB; else whether its model codes
+/// eight stretches spread over `raw` (an eighth of it, at least 32 KiB)
+/// under 1.3 times `best` scaled to their share where it learns (their
+/// second half 1/32 cheaper per byte than their first), under 31/32 of it
+/// where it does not (block_strategy.cpp says why).
 bool raw_cm_may_win(std::string_view raw, std::size_t best);
 
 /// Block strategy, first pass (parallel, without the window): the encodings

@@ -83,6 +83,8 @@ public:
             }
         }
     }
+    /// Bytes coded so far (those written and those held for a carry).
+    std::size_t size() const noexcept { return out_.size() + static_cast<std::size_t>(cache_size_); }
     /// Flushes and returns the coded bytes (the always-zero first byte of the
     /// LZMA arithmetic is not stored).
     std::string finish() {

@@ -444,7 +444,7 @@ private:
 
 }  // namespace
 
-std::string write_raw_cm_block(std::string_view raw) {
+std::string write_raw_cm_block(std::string_view raw, std::size_t* half) {
     if (raw.size() > kRawCmMaxSize) return {};
     std::string out;
     put_u8(out, kRawCmSubtype);
@@ -454,6 +454,7 @@ std::string write_raw_cm_block(std::string_view raw) {
     auto model = std::make_unique<RawCmModel>(raw.size(), hist);
     RangeEncoder rc;
     for (std::size_t i = 0; i < raw.size(); ++i) {
+        if (half && i == raw.size() / 2) *half = rc.size();
         const unsigned c = static_cast<unsigned char>(raw[i]);
         for (int j = 7; j >= 0; --j) {
             const int bit = static_cast<int>((c >> j) & 1u);

@@ -25,8 +25,10 @@ inline constexpr int kRawCmLevel = 3;
 
 /// Payload of a CM raw block (subtype and coding bytes first) coding `raw`,
 /// a raw block's payload before zstd; empty when `raw` is over the raw
-/// block's limit (kMaxBlockBytes + 20).
-std::string write_raw_cm_block(std::string_view raw);
+/// block's limit (kMaxBlockBytes + 20). `half`, when given, receives the
+/// coded size after the first half of `raw` (for estimates: the rate of
+/// the second half is the model's once it has learned the first).
+std::string write_raw_cm_block(std::string_view raw, std::size_t* half = nullptr);
 
 /// The raw block payload a CM raw block payload decodes to. Errors:
 /// Errc::corrupt and Errc::limit naming the payload byte after `where`.
