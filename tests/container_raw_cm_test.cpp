@@ -4,6 +4,7 @@
 // and its corrupt and truncated payloads named by payload byte.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "../src/container/encoder.hpp"
 #include "../src/container/raw_cm.hpp"
 #include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
 #include "support/block_records.hpp"
 #include "support/files.hpp"
 
@@ -131,6 +133,32 @@ TEST(RawCmBlock, CodedWholeWhereItDoesNotLearnOnlyWhenItWinsOnTheSample) {
     EXPECT_FALSE(stz::raw_cm_may_win(walk, cm));
     EXPECT_FALSE(stz::raw_cm_may_win(walk, cm + cm / 64));
     EXPECT_TRUE(stz::raw_cm_may_win(walk, 2 * cm));
+}
+
+// The chains of `data` read as `format`, as one block.
+Block block_of(InputFormat format, const std::string& data) {
+    auto chains = read_chains(format, data);
+    EXPECT_TRUE(static_cast<bool>(chains));
+    Block b;
+    if (!chains) return b;
+    b.chains = std::move(*chains);
+    b.axes = 2;
+    for (const Chain& c : b.chains) b.axes = std::max(b.axes, c.axes);
+    return b;
+}
+
+// Text read as steps (its axes turn back every few moves) is told from a
+// machine's step logs, whose axes seldom do, and from two-axis chains (a
+// random walk turns back as often: its step model wins there); the few
+// moves of a short text do not decide.
+TEST(TextReadAsSteps, ToldFromStepLogsByTheirReversals) {
+    EXPECT_TRUE(stz::reads_as_text(block_of(InputFormat::steps, corpus("plotter/gnuplot.hpgl"))));
+    EXPECT_TRUE(stz::reads_as_text(block_of(InputFormat::steps, hpgl_text(7, 3000))));
+    EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::steps, hpgl_text(7, 40))));
+    EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::steps, corpus("stepper/engrave-4axis.steps"))));
+    EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::steps, corpus("timed/trapezoid-3axis.steps"))));
+    EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::steps, corpus("timed/heldout-fast-3axis.steps"))));
+    EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::freeman, corpus("random/walk-4.fc"))));
 }
 
 // HP-GL text read as steps is written raw; from -L 3 the CM raw block takes

@@ -3,6 +3,7 @@
 // cut chosen on a sample of the first block, and the second pass that codes
 // a modeled block again from the window.
 #include <algorithm>
+#include <array>
 
 #include "../segment/accepted_cut.hpp"
 #include "arc_items.hpp"
@@ -61,6 +62,42 @@ std::uint64_t segment_count(const Cut& cut) {
 // Whether `segments` over `steps` are too dense for the segment model: the
 // step model's ground (random walks).
 bool too_dense(std::uint64_t segments, std::uint64_t steps) { return segments * 1000 > kStepModelOnly * steps; }
+
+// A block of more than two axes reads as text, not as a machine's steps,
+// when its axes reverse their direction more than once in kTextReversals
+// moves (of at least kTextMinMoves): bytes of HP-GL, G-code or source text
+// read as a STEP/DIR log reverse 0.25-0.36 times a move (corpora/plotter/
+// gnuplot.hpgl, samples/plot.gcode, bench/hpgl_inputs.sh's files, this
+// project's sources), the step logs of corpora/ and of docs/benchmarks.md
+// read as steps at most 0.014 (engrave-4axis; the timed logs 0.0002-0.0024):
+// a stepper turned back every few steps does not draw. Such a block is
+// coded raw (zstd, or the CM raw block) without the chain encodings, which
+// never won there and were half the compression's time (the profile trials,
+// the cuts, the segment models; docs/benchmarks.md "Text read as steps").
+// (Two-axis blocks keep them: a random walk's step model wins.)
+constexpr std::uint64_t kTextReversals = 8;
+constexpr std::uint64_t kTextMinMoves = 4096;
+
+}  // namespace
+
+bool reads_as_text(const Block& block) {
+    if (block.axes <= 2) return false;
+    std::uint64_t moves = 0, reversals = 0;
+    for (const Chain& c : block.chains) {
+        std::array<int, kMaxAxes> last{};
+        for (const Step st : c.steps)
+            for (int a = 0; a < block.axes; ++a) {
+                const int d = step_axis(st, a);
+                if (d == 0) continue;
+                reversals += last[static_cast<std::size_t>(a)] == -d;
+                last[static_cast<std::size_t>(a)] = d;
+                ++moves;
+            }
+    }
+    return moves >= kTextMinMoves && reversals * kTextReversals > moves;
+}
+
+namespace {
 
 // From kFastStepLevel, below the thorough levels: a block of
 // kSmallBlockSteps or more that a table block codes is also coded by the
@@ -122,11 +159,18 @@ constexpr int kZstdProbeLevel = 6;
 constexpr std::size_t kZstdReach = 2;
 constexpr std::size_t kChainZstdReach = 3;  // halves
 
+// The size of the probe, zstd at kZstdProbeLevel (0: none made).
+std::size_t zstd_probe_size(std::string_view bytes) { return make_block_record(kRaw, 0, bytes, kZstdProbeLevel).size(); }
+
+// Whether zstd at the level may come under `best` (none: it may), its probe
+// of `probe` bytes made.
+bool zstd_probe_may_win(std::size_t probe, std::size_t best, bool chain_payload = false) {
+    if (best == 0 || probe == 0) return true;
+    return chain_payload ? 2 * probe < kChainZstdReach * best : probe < kZstdReach * best;
+}
+
 bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_payload = false) {
-    if (best.empty()) return true;
-    const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
-    if (chain_payload) return probe.empty() || 2 * probe.size() < kChainZstdReach * best.size();
-    return probe.empty() || probe.size() < kZstdReach * best.size();
+    return best.empty() || zstd_probe_may_win(zstd_probe_size(bytes), best.size(), chain_payload);
 }
 
 // raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes whole
@@ -891,7 +935,9 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     // segmenter on more axes").
     if (!s.segmenter_named && s.segmenter == SegmenterKind::optimal && first.axes > 2) s.segmenter = SegmenterKind::greedy;
     std::optional<Profile> dense;
-    if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
+    if (!s.timed && reads_as_text(first)) {
+        // (raw blocks only: no profile to rank)
+    } else if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
         // (a small first block left to the context-mixing step model)
     } else if (!s.profile_named && s.thorough && s.timed && !timed_first_check(first, s)) {
         // (a timed frame whose first block the tick or interrupt block codes:
@@ -1070,7 +1116,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const TimedCheck timed = !s.timed || !can_represent ? TimedCheck{}
                              : timed_first              ? s.timed_first
                                                         : timed_check(block, s);
-    if (can_represent && timed.segments) {
+    const bool text = !s.timed && reads_as_text(block);
+    if (can_represent && timed.segments && !text) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
         // cut, it is the only cut made (the chains were checked by representable()).
@@ -1233,29 +1280,45 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         put_varint(raw, block.chains.size());
         put_varint(raw, job.steps);
         raw += job.bytes;
-        if (!s.thorough || zstd_may_win(raw, best)) {
+        // From kRawCmLevel the same bytes coded by the CM raw block (type 7
+        // subtype 3), about half zstd's size on text-like input, written
+        // when smaller than zstd's, and at least 1/32 smaller than a chain
+        // block (which decodes faster and gives the window its steps; on the
+        // random walks of corpora/ it is 1 % smaller), coded whole only
+        // where a sample of it says it may be (raw_cm_may_win(); against
+        // zstd's block too: on random walks it came 0.6 % under it at a
+        // third of the speed); the job stays a raw block.
+        bool zstd_won = false, cm_won = false;
+        auto zstd_at_level = [&] {
             std::string rec = make_block_record(kRaw, job.flags, raw, s.level);
-            const bool zstd_won = beats_model(rec) && consider(kRaw, std::move(rec));
-            // From kRawCmLevel the same bytes coded by the CM raw block
-            // (type 7 subtype 3), about half zstd's size on text-like input,
-            // written when smaller than zstd's, and at least 1/32 smaller
-            // than a chain block (which decodes faster and gives the window
-            // its steps; on the random walks of corpora/ it is 1 % smaller),
-            // coded whole only where a sample of it says it may be
-            // (raw_cm_may_win(); against zstd's block too: on random walks
-            // it came 0.6 % under it at a third of the speed); the job stays
-            // a raw block.
-            bool cm_won = false;
-            if (s.level >= kRawCmLevel && raw_cm_may_win(raw, best.size())) {
-                const std::string cm = write_raw_cm_block(raw);
-                std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
-                                         ? make_stored_record(kExtended, job.flags, cm)
-                                         : std::string();
-                const bool margin = type == kRaw || best.empty() || cm_rec.size() + cm_rec.size() / 32 < best.size();
-                cm_won = !cm_rec.empty() && margin && beats_model(cm_rec) && consider(kRaw, std::move(cm_rec));
-            }
-            if (zstd_won || cm_won) job.raw_payload = std::move(raw);
+            zstd_won = beats_model(rec) && consider(kRaw, std::move(rec));
+        };
+        auto cm_raw = [&](std::size_t against) {
+            if (s.level < kRawCmLevel || !raw_cm_may_win(raw, against)) return;
+            const std::string cm = write_raw_cm_block(raw);
+            std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
+                                     ? make_stored_record(kExtended, job.flags, cm)
+                                     : std::string();
+            const bool margin = type == kRaw || best.empty() || cm_rec.size() + cm_rec.size() / 32 < best.size();
+            cm_won = !cm_rec.empty() && margin && beats_model(cm_rec) && consider(kRaw, std::move(cm_rec));
+        };
+        if (!s.thorough) {
+            zstd_at_level();
+            cm_raw(best.size());
+        } else if (best.empty()) {
+            // No chain block (text read as steps): the CM raw block first,
+            // coded whole (no sample: there is no faster block it must beat),
+            // then zstd at the level only where zstd's probe says it may come
+            // under it (on text the CM raw block is a third of the probe, and
+            // zstd at level 19 was a third of -L 19's time there).
+            cm_raw(0);
+            const std::size_t probe = zstd_probe_size(raw);
+            if (zstd_probe_may_win(probe, best.size())) zstd_at_level();
+        } else if (zstd_may_win(raw, best)) {
+            zstd_at_level();
+            cm_raw(best.size());
         }
+        if (zstd_won || cm_won) job.raw_payload = std::move(raw);
     }
     if (best.empty()) {
         job.error = make_error(Errc::io, s.source + ": zstd compression failed");

@@ -135,6 +135,12 @@ TableEffort table_effort(int level);
 /// The window a level declares (log2 of steps + chains).
 int window_log_for_level(int level);
 
+/// Whether `block` reads as text rather than as a machine's steps: more
+/// than two axes whose moves (at least 4096) reverse direction more than
+/// once in eight. The encoder codes such a block raw (zstd, the CM raw
+/// block) without trying the chain encodings (block_strategy.cpp says why).
+bool reads_as_text(const Block& block);
+
 /// Whether the CM raw block coding the raw block content `raw` whole may
 /// come out under a block of `best` bytes (0: none; 1/32 under a chain
 /// block): true for `raw` of at most 64 KiB; else whether its model codes
