@@ -161,6 +161,27 @@ TEST(TextReadAsSteps, ToldFromStepLogsByTheirReversals) {
     EXPECT_FALSE(stz::reads_as_text(block_of(InputFormat::freeman, corpus("random/walk-4.fc"))));
 }
 
+// With raw blocks not allowed (--no-raw) text read as steps still takes a
+// chain block, at every level: the text shortcut is for raw blocks only.
+TEST(TextReadAsSteps, NoRawStillCodesItAsChains) {
+    const std::string gp = corpus("plotter/gnuplot.hpgl");
+    for (int level : {1, 3, 19}) {
+        CompressOptions opt;
+        opt.level = level;
+        opt.format = InputFormat::steps;
+        opt.allow_raw = false;
+        auto z = compress(gp, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        for (const auto& [type, first] : block_kinds(*z)) {
+            EXPECT_NE(type, stz::kRaw) << level;
+            EXPECT_FALSE(type == stz::kExtended && first == stz::kRawCmSubtype) << level;
+        }
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, gp) << level;
+    }
+}
+
 // HP-GL text read as steps is written raw; from -L 3 the CM raw block takes
 // it (about half zstd's size), at -L 1 zstd's raw block (type 2) still does.
 TEST(RawCmBlock, EncoderPicksItOnHpglText) {

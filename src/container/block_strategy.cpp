@@ -71,7 +71,8 @@ bool too_dense(std::uint64_t segments, std::uint64_t steps) { return segments * 
 // project's sources), the step logs of corpora/ and of docs/benchmarks.md
 // read as steps at most 0.014 (engrave-4axis; the timed logs 0.0002-0.0024):
 // a stepper turned back every few steps does not draw. Such a block is
-// coded raw (zstd, or the CM raw block) without the chain encodings, which
+// coded raw (zstd, or the CM raw block; not with --no-raw, which leaves
+// only the chain encodings) without the chain encodings, which
 // never won there and were half the compression's time (the profile trials,
 // the cuts, the segment models; docs/benchmarks.md "Text read as steps").
 // (Two-axis blocks keep them: a random walk's step model wins.)
@@ -935,7 +936,7 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     // segmenter on more axes").
     if (!s.segmenter_named && s.segmenter == SegmenterKind::optimal && first.axes > 2) s.segmenter = SegmenterKind::greedy;
     std::optional<Profile> dense;
-    if (!s.timed && reads_as_text(first)) {
+    if (!s.timed && s.allow_raw && reads_as_text(first)) {
         // (raw blocks only: no profile to rank)
     } else if (!s.profile_named && s.thorough && cm_small_first(first, step_count(first), s, dense)) {
         // (a small first block left to the context-mixing step model)
@@ -1116,7 +1117,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const TimedCheck timed = !s.timed || !can_represent ? TimedCheck{}
                              : timed_first              ? s.timed_first
                                                         : timed_check(block, s);
-    const bool text = !s.timed && reads_as_text(block);
+    // (with --no-raw a chain block is the only choice, text or not)
+    const bool text = !s.timed && s.allow_raw && reads_as_text(block);
     if (can_represent && timed.segments && !text) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase

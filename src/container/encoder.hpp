@@ -138,7 +138,8 @@ int window_log_for_level(int level);
 /// Whether `block` reads as text rather than as a machine's steps: more
 /// than two axes whose moves (at least 4096) reverse direction more than
 /// once in eight. The encoder codes such a block raw (zstd, the CM raw
-/// block) without trying the chain encodings (block_strategy.cpp says why).
+/// block) without trying the chain encodings, unless raw blocks are not
+/// allowed (block_strategy.cpp says why).
 bool reads_as_text(const Block& block);
 
 /// Whether the CM raw block coding the raw block content `raw` whole may
