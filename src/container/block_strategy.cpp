@@ -1117,8 +1117,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     const TimedCheck timed = !s.timed || !can_represent ? TimedCheck{}
                              : timed_first              ? s.timed_first
                                                         : timed_check(block, s);
-    // (with --no-raw a chain block is the only choice, text or not)
-    const bool text = !s.timed && s.allow_raw && reads_as_text(block);
+    // (with --no-raw, or bytes over the raw block's limit, a chain block is
+    // the only choice, text or not)
+    const bool text = !s.timed && s.allow_raw && job.bytes.size() <= kMaxBlockBytes && reads_as_text(block);
     if (can_represent && timed.segments && !text) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
