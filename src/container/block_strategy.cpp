@@ -160,18 +160,11 @@ constexpr int kZstdProbeLevel = 6;
 constexpr std::size_t kZstdReach = 2;
 constexpr std::size_t kChainZstdReach = 3;  // halves
 
-// The size of the probe, zstd at kZstdProbeLevel (0: none made).
-std::size_t zstd_probe_size(std::string_view bytes) { return make_block_record(kRaw, 0, bytes, kZstdProbeLevel).size(); }
-
-// Whether zstd at the level may come under `best` (none: it may), its probe
-// of `probe` bytes made.
-bool zstd_probe_may_win(std::size_t probe, std::size_t best, bool chain_payload = false) {
-    if (best == 0 || probe == 0) return true;
-    return chain_payload ? 2 * probe < kChainZstdReach * best : probe < kZstdReach * best;
-}
-
 bool zstd_may_win(std::string_view bytes, const std::string& best, bool chain_payload = false) {
-    return best.empty() || zstd_probe_may_win(zstd_probe_size(bytes), best.size(), chain_payload);
+    if (best.empty()) return true;
+    const std::string probe = make_block_record(kRaw, 0, bytes, kZstdProbeLevel);
+    if (chain_payload) return probe.empty() || 2 * probe.size() < kChainZstdReach * best.size();
+    return probe.empty() || probe.size() < kZstdReach * best.size();
 }
 
 // raw_cm_may_win() (encoder.hpp): the CM raw block codes a block's bytes whole
@@ -1315,8 +1308,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             // under it (on text the CM raw block is a third of the probe, and
             // zstd at level 19 was a third of -L 19's time there).
             cm_raw(0);
-            const std::size_t probe = zstd_probe_size(raw);
-            if (zstd_probe_may_win(probe, best.size())) zstd_at_level();
+            if (zstd_may_win(raw, best)) zstd_at_level();
         } else if (zstd_may_win(raw, best)) {
             zstd_at_level();
             cm_raw(best.size());
