@@ -192,6 +192,9 @@ constexpr std::size_t kRawCmProbeShare = 8;
 constexpr std::size_t kRawCmStretches = 8;
 constexpr std::size_t kRawCmReach = 13;  // tenths
 constexpr std::size_t kRawCmLearns = 32;
+// The whole is kept against a chain block only when 1/kRawCmMargin under it;
+// where its model does not learn the stretches must be that far under `best`.
+constexpr std::size_t kRawCmMargin = 32;
 
 // The chains of `block` in eight stretches spread evenly over it, about
 // `limit` steps in all: calls take(i, n) for each chain i of a stretch,
@@ -895,7 +898,8 @@ bool raw_cm_may_win(std::string_view raw, std::size_t best) {
     const bool learns = static_cast<double>(second) * static_cast<double>(first_in) * kRawCmLearns <
                         static_cast<double>(half) * static_cast<double>(second_in) * (kRawCmLearns - 1);
     // coded / probe bytes < reach * best / raw bytes
-    const double reach = learns ? static_cast<double>(kRawCmReach) / 10.0 : 31.0 / 32.0;
+    const double reach = learns ? static_cast<double>(kRawCmReach) / 10.0
+                                : static_cast<double>(kRawCmMargin - 1) / static_cast<double>(kRawCmMargin);
     return static_cast<double>(coded.size()) * static_cast<double>(raw.size()) <
            reach * static_cast<double>(best) * static_cast<double>(probe.size());
 }
@@ -1295,7 +1299,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
                                      ? make_stored_record(kExtended, job.flags, cm)
                                      : std::string();
-            const bool margin = type == kRaw || best.empty() || cm_rec.size() + cm_rec.size() / 32 < best.size();
+            const bool margin = type == kRaw || best.empty() || cm_rec.size() + cm_rec.size() / kRawCmMargin < best.size();
             cm_won = !cm_rec.empty() && margin && beats_model(cm_rec) && consider(kRaw, std::move(cm_rec));
         };
         if (!s.thorough) {
