@@ -7,7 +7,8 @@
 // model on glyph contours (also on blocks large enough to be chosen for it on
 // a sample before their segments are cut), levels 2-9 the light one, level 1
 // neither, and plots keep the segment model; a block of other than two axes
-// gets none.
+// gets none; a random walk's plain steps are coded by the step model or
+// zstd from level 2 on.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "../src/container/window.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
+#include "support/block_records.hpp"
 #include "support/pinned_bytes.hpp"
 
 namespace stepzip::stz {
@@ -256,6 +258,43 @@ TEST(CmStepModel, LargeBlocksAreChosenBeforeTheirSegmentsAreCut) {
         ASSERT_EQ(models.size(), 1u);
         if (input == &glyphs) EXPECT_EQ(models[0], kMixedStepCm);
         else EXPECT_NE(models[0], kMixedStepCm);
+    }
+}
+
+// A random walk's steps are plain (order-2 entropy as high as order 0);
+// traced contours and plots are not, nor are a few steps or more than two
+// axes.
+TEST(PlainSteps, ToldFromChainsByTheirOrderTwoEntropy) {
+    EXPECT_TRUE(plain_steps(corpus_block("random/walk-4.fc", 150000)));
+    EXPECT_TRUE(plain_steps(corpus_block("random/walk-8.fc", 150000)));
+    for (const char* rel : {"glyphs/dejavu-8.fc", "glyphs/liberation-4.fc", "plotter/hershey-grbl.fc", "plotter/gnuplot-eval4.fc"})
+        EXPECT_FALSE(plain_steps(corpus_block(rel, 200000))) << rel;
+    EXPECT_FALSE(plain_steps(corpus_block("traced/icons-8.fc", 60000)));
+    const std::string walk = corpus_text("random/walk-8.fc", 2);
+    const std::size_t codes = walk.find("0 0 ") + 4;
+    EXPECT_FALSE(plain_steps(test::block_of(InputFormat::freeman, walk.substr(0, codes + 10000) + "\n")));
+    EXPECT_TRUE(plain_steps(test::block_of(InputFormat::freeman, walk.substr(0, codes + 20000) + "\n")));
+    Block three = test::block_of(InputFormat::freeman, walk);
+    three.axes = 3;
+    EXPECT_FALSE(plain_steps(three));
+}
+
+// Levels 2-9 code a random walk by the step model or zstd's raw block (not
+// the light model, the table block or the CM raw block), and it decodes;
+// -L 3's bytes are those it wrote before the rule.
+TEST(PlainSteps, FastLevelsCodeThemByTheStepModelOrZstd) {
+    const std::string walk = corpus_text("random/walk-8.fc", 2);
+    for (const int level : {2, 3, 9}) {
+        CompressOptions opt;
+        opt.level = level;
+        auto z = compress(walk, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, walk);
+        const auto records = test::block_records(*z);
+        ASSERT_FALSE(records.empty());
+        for (const auto& r : records) EXPECT_TRUE(r.type == kStepModel || r.type == kRaw) << level << ": " << r.type;
     }
 }
 

@@ -4,6 +4,8 @@
 // a modeled block again from the window.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <vector>
 
 #include "../segment/accepted_cut.hpp"
 #include "arc_items.hpp"
@@ -96,6 +98,43 @@ bool reads_as_text(const Block& block) {
             }
     }
     return moves >= kTextMinMoves && reversals * kTextReversals > moves;
+}
+
+// Order-2 against order-0 entropy of a two-axis block's steps (the symbol
+// before the chain's first two steps is "none"): real chains have H2 at
+// most 0.6 H0 (traced glyphs and icons 0.24-0.55, plots 0.16-0.59 on
+// corpora/ and the several-MB inputs), random walks 0.999-1.000.
+constexpr std::uint64_t kPlainStepsTenths = 9;  // H2 >= 9/10 H0: plain
+constexpr std::uint64_t kPlainStepsMin = 1u << 14;
+
+bool plain_steps(const Block& block) {
+    if (block.axes != 2) return false;
+    std::array<std::uint64_t, 16> c0{};
+    std::vector<std::uint64_t> c2(17 * 17 * 16, 0);
+    std::uint64_t n = 0;
+    for (const Chain& c : block.chains) {
+        unsigned a = 16, b = 16;  // (none)
+        for (const Step st : c.steps) {
+            const unsigned x = st & 15u;
+            ++c0[x];
+            ++c2[(a * 17 + b) * 16 + x];
+            a = b;
+            b = x;
+        }
+        n += c.steps.size();
+    }
+    if (n < kPlainStepsMin) return false;
+    auto bits = [](std::uint64_t v, std::uint64_t total) {
+        return v == 0 ? 0.0 : -static_cast<double>(v) * std::log2(static_cast<double>(v) / static_cast<double>(total));
+    };
+    double h0 = 0, h2 = 0;
+    for (const std::uint64_t v : c0) h0 += bits(v, n);
+    for (std::size_t ctx = 0; ctx < 17 * 17; ++ctx) {
+        std::uint64_t t = 0;
+        for (std::size_t x = 0; x < 16; ++x) t += c2[ctx * 16 + x];
+        for (std::size_t x = 0; x < 16; ++x) h2 += bits(c2[ctx * 16 + x], t);
+    }
+    return h2 * 10 >= h0 * static_cast<double>(kPlainStepsTenths);
 }
 
 namespace {
@@ -700,13 +739,15 @@ bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s,
     return true;
 }
 
-// A large two-axis block at the fast levels from kFastStepLevel (where the
-// segment and step models are tried too) that the light step model codes
-// far below the other encodings is known for one before the whole block is
-// cut: its whole chains spread over it (about kCmSampleSteps steps, cut as
-// the block would be) coded by the light model must come out at least
-// 1/kLightFirstMargin smaller than the table block, the segment model and
-// the step model of the same sample. Such a block skips the cut, the other
+// A large two-axis block at the fast levels from kLightCmLevel that the
+// light step model codes far below the other encodings is known for one
+// before the whole block is cut: its whole chains spread over it (about
+// kCmSampleSteps steps, cut as the block would be) coded by the light model
+// must come out at least 1/kLightFirstMargin smaller than the table block,
+// the segment model and the step model of the same sample (at -L 2 too,
+// which tries the last two on large blocks only here: without this check
+// -L 2 coded such a block's table block first and was slower than -L 3,
+// with the same bytes). Such a block skips the cut, the other
 // encodings and the whole-block trials of light_cm_may_win() (most of the
 // first pass on large contours); the others take the full choice, which
 // reuses the light model's size on the sample. The margin (chosen on
@@ -719,7 +760,7 @@ constexpr std::size_t kLightFirstMargin = 8;
 
 // `made`: what it coded of the sample (light_cm_may_win() reuses it).
 bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettings& s, LightSample& made) {
-    if (s.thorough || s.level < kFastStepLevel || !early_model_check_applies(block, steps, s)) return false;
+    if (s.thorough || s.level < kLightCmLevel || !early_model_check_applies(block, steps, s)) return false;
     const Block sample = whole_chains_sample(block);
     Cut cut;
     SegmentStats stats;
@@ -1086,8 +1127,16 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     std::size_t sample_cm = first ? s.cm_first_sample : 0;
     if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
     LightSample light_sample;      // what light_cm_first() coded of the block's sample
-    const bool cm_first = known_cm || (!declined && cm_step_model_first(block, job.steps, s, &sample_cm));
-    if (cm_first || light_cm_first(block, job.steps, s, light_sample)) {
+    // From kLightCmLevel a block of plain steps (random walks:
+    // plain_steps()) is coded by the step model and zstd only (at the
+    // strong levels also mixed): the cuts, the segment, table and record
+    // blocks, the light and the context-mixing step models and the CM raw
+    // block never came 1/32 under them there, and were three quarters of
+    // -L 3's time (docs/benchmarks.md "Plain steps").
+    const bool plain = !s.timed && s.level >= kLightCmLevel && fits && job.steps <= kMaxBlockSteps &&
+                       plain_steps(block);
+    const bool cm_first = known_cm || (!declined && !plain && cm_step_model_first(block, job.steps, s, &sample_cm));
+    if (cm_first || (!plain && light_cm_first(block, job.steps, s, light_sample))) {
         // A step-model block, coded by the context-mixing model (or the
         // light one) in the second pass (cm_pass(); no record until then),
         // or here when choose_frame_settings() made the model.
@@ -1117,7 +1166,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // (with --no-raw, or bytes over the raw block's limit, a chain block is
     // the only choice, text or not)
     const bool text = !s.timed && s.allow_raw && job.bytes.size() <= kMaxBlockBytes && reads_as_text(block);
-    if (can_represent && timed.segments && !text) {
+    if (can_represent && timed.segments && !text && !plain) {
         Cut segs;
         // Below the thorough levels, when the sample chose the default-phase
         // cut, it is the only cut made (the chains were checked by representable()).
@@ -1229,7 +1278,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The step model decodes a few times slower than a table block: below
     // kFastStepLevel only small blocks try it.
     if (fits && job.steps <= kMaxBlockSteps && !segment_model_only &&
-        (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps)) {
+        (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps || plain)) {
         int order = 0;
         const std::string model =
             write_step_model(block, s.thorough ? thorough_step_order(block) : kFastStepOrder, nullptr, &order);
@@ -1258,7 +1307,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The context-mixing step model, where it may win, is coded in the
     // second pass: zstd, which does not come near it there, is not tried.
     job.cm = cm_step_model_may_win(job, s, type, best, sample_cm);
-    job.cm_light = !job.cm && light_cm_may_win(job, s, type, best, light_sample);
+    job.cm_light = !job.cm && !plain && light_cm_may_win(job, s, type, best, light_sample);
     job.cm = job.cm || job.cm_light;
     if (!job.cm && !chain_payload.empty() && chain_payload.size() <= kMaxBlockPayload &&
         zstd_may_win(chain_payload, best, true)) {
@@ -1294,7 +1343,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             zstd_won = beats_model(rec) && consider(kRaw, std::move(rec));
         };
         auto cm_raw = [&](std::size_t against) {
-            if (s.level < kRawCmLevel || !raw_cm_may_win(raw, against)) return;
+            if (plain || s.level < kRawCmLevel || !raw_cm_may_win(raw, against)) return;
             const std::string cm = write_raw_cm_block(raw);
             std::string cm_rec = !cm.empty() && cm.size() <= kMaxBlockPayload
                                      ? make_stored_record(kExtended, job.flags, cm)

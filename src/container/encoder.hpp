@@ -141,6 +141,10 @@ int window_log_for_level(int level);
 /// block) without trying the chain encodings, unless raw blocks are not
 /// allowed (block_strategy.cpp says why).
 bool reads_as_text(const Block& block);
+/// Whether a two-axis block of at least 2^14 steps is "plain": its steps'
+/// order-2 entropy is at least 9/10 of their order-0 entropy (random walks),
+/// which the fast levels code by the step model and zstd only.
+bool plain_steps(const Block& block);
 
 /// Whether the CM raw block coding the raw block content `raw` whole may
 /// come out under a block of `best` bytes (0: none; 1/32 under a chain
