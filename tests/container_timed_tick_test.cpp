@@ -15,6 +15,7 @@
 #include "../src/container/timed_tick.hpp"
 #include "stepzip/container.hpp"
 #include "support/block_records.hpp"
+#include "support/files.hpp"
 
 namespace stepzip {
 namespace {
@@ -540,6 +541,33 @@ TEST(InterruptBlock, EncoderPicksItOnASmoothedLogAndTheFrameRoundTrips) {
         ASSERT_TRUE(back.ok()) << back.error().message;
         EXPECT_EQ(*back, log) << "level " << level;
     }
+}
+
+// The thorough levels code a timed block both as a tick block and as an
+// interrupt block, the smaller kept; the default level takes the one that
+// the block's first ticks chose. On the S-curve log of corpora/timed the
+// first ticks choose the larger: -L 19 writes the other, smaller.
+TEST(InterruptBlock, ThoroughLevelsKeepTheSmallerOfTheTwo) {
+    const std::string log = test::corpus("timed/heldout-scurve.steps");
+    std::string payload[2];
+    unsigned sub[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        CompressOptions opt;
+        opt.format = InputFormat::timed;
+        opt.level = i == 0 ? 3 : 19;
+        auto z = compress(log, opt);
+        ASSERT_TRUE(z.ok()) << z.error().message;
+        auto back = decompress(*z);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_EQ(*back, log);
+        const auto records = test::block_records(*z);
+        ASSERT_EQ(records.size(), 1u);
+        ASSERT_EQ(records[0].type, stz::kExtended);
+        payload[i] = std::string(records[0].payload);
+        sub[i] = static_cast<unsigned char>(payload[i][0]);
+    }
+    EXPECT_NE(sub[0], sub[1]);
+    EXPECT_LT(payload[1].size(), payload[0].size());
 }
 
 }  // namespace
