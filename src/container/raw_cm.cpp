@@ -130,7 +130,9 @@ public:
     static constexpr int kVerify = 400;     // a new match is verified back this far at most
     static constexpr int kApm2Bits = 12;
 
-    RawCmModel(std::uint64_t size, const std::string& hist)
+    // `hist`: the block's bytes (the encoder's all of them, the decoder's a
+    // buffer of `size` bytes reserved, filled as they are decoded).
+    RawCmModel(std::uint64_t size, const char* hist)
         : hist_(hist), apm0_(256), apm1_(65536), apm2_(std::size_t{1} << kApm2Bits) {
         int b = 12;  // (at least 2: a bucket's pair shares 128 aligned bytes)
         while (b < 20 && (std::uint64_t{1} << b) < size * 4) ++b;
@@ -401,7 +403,7 @@ private:
         resolve_buckets();
     }
 
-    const std::string& hist_;
+    const char* hist_;
     std::size_t pos_ = 0;  // bytes coded so far
     int bucket_bits_ = 12, match_bits_ = 10;
     std::unique_ptr<mixdetail::ZeroPages> buckets_, match_;
@@ -450,8 +452,7 @@ std::string write_raw_cm_block(std::string_view raw, std::size_t* half) {
     put_u8(out, kRawCmSubtype);
     put_u8(out, kRawCmCoding);
     put_varint(out, raw.size());
-    const std::string hist(raw);
-    auto model = std::make_unique<RawCmModel>(raw.size(), hist);
+    auto model = std::make_unique<RawCmModel>(raw.size(), raw.data());
     RangeEncoder rc;
     for (std::size_t i = 0; i < raw.size(); ++i) {
         if (half && i == raw.size() / 2) *half = rc.size();
@@ -480,7 +481,8 @@ Result<std::string> read_raw_cm_block(std::string_view payload, const std::strin
     const std::size_t base = cur.pos();
     RangeDecoder rc(payload.substr(base));
     std::string out;
-    auto model = std::make_unique<RawCmModel>(size, out);
+    out.reserve(static_cast<std::size_t>(size));  // (never reallocated: the model reads it in place)
+    auto model = std::make_unique<RawCmModel>(size, out.data());
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + rc.pos()) + ": " + what);
     };
