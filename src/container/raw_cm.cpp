@@ -130,8 +130,8 @@ public:
     static constexpr int kVerify = 400;     // a new match is verified back this far at most
     static constexpr int kApm2Bits = 12;
 
-    // `hist`: the block's bytes (the encoder's all of them, the decoder's a
-    // buffer of `size` bytes reserved, filled as they are decoded).
+    // `hist`: the block's bytes (the encoder's all of them, the decoder's
+    // those decoded so far; rebase() when they move).
     RawCmModel(std::uint64_t size, const char* hist)
         : hist_(hist), apm0_(256), apm1_(65536), apm2_(std::size_t{1} << kApm2Bits) {
         int b = 12;  // (at least 2: a bucket's pair shares 128 aligned bytes)
@@ -151,6 +151,9 @@ public:
         byte_contexts();
         byte_finish();
     }
+
+    /// The bytes coded so far have moved to `hist`.
+    void rebase(const char* hist) noexcept { hist_ = hist; }
 
     /// Probability (1..65535) that the next bit is 1.
     [[gnu::always_inline]] std::int32_t predict() noexcept {
@@ -480,8 +483,11 @@ Result<std::string> read_raw_cm_block(std::string_view payload, const std::strin
         return make_error(Errc::limit, where + " byte 2: decoded size exceeds the raw block limit");
     const std::size_t base = cur.pos();
     RangeDecoder rc(payload.substr(base));
+    // (the model reads the bytes decoded in place: it is told where they
+    // are whenever the buffer grows; a declared size is not reserved whole
+    // before the payload has shown it holds that much)
     std::string out;
-    out.reserve(static_cast<std::size_t>(size));  // (never reallocated: the model reads it in place)
+    out.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(size, std::uint64_t{1} << 16)));
     auto model = std::make_unique<RawCmModel>(size, out.data());
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + rc.pos()) + ": " + what);
@@ -491,7 +497,13 @@ Result<std::string> read_raw_cm_block(std::string_view payload, const std::strin
         for (int j = 0; j < 8; ++j) {
             const int bit = rc.decode_p(static_cast<std::uint32_t>(65536 - model->predict()));
             c = (c << 1) | static_cast<unsigned>(bit);
-            if (j == 7) out.push_back(static_cast<char>(c));
+            if (j == 7) {
+                if (out.size() == out.capacity()) {
+                    out.reserve(2 * out.capacity());
+                    model->rebase(out.data());
+                }
+                out.push_back(static_cast<char>(c));
+            }
             model->update(bit);
         }
         if (rc.overrun()) return fail("range-coded stream ends early");
