@@ -1129,10 +1129,11 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     LightSample light_sample;      // what light_cm_first() coded of the block's sample
     // From kLightCmLevel a block of plain steps (random walks:
     // plain_steps()) is coded by the step model and zstd only (at the
-    // strong levels also mixed): the cuts, the segment, table and record
-    // blocks, the light and the context-mixing step models and the CM raw
-    // block never came 1/32 under them there, and were three quarters of
-    // -L 3's time (docs/benchmarks.md "Plain steps").
+    // strong levels also mixed, after the context-mixing step model's check
+    // on a sample, which also decides the mixing): the cuts, the segment,
+    // table and record blocks, the light step model and the CM raw block
+    // never came 1/32 under them there, and were three quarters of -L 3's
+    // time (docs/benchmarks.md "Plain steps").
     const bool plain = !s.timed && s.level >= kLightCmLevel && fits && job.steps <= kMaxBlockSteps &&
                        plain_steps(block);
     const bool cm_first = known_cm || (!declined && !plain && cm_step_model_first(block, job.steps, s, &sample_cm));
