@@ -25,6 +25,7 @@
 #include "stepzip/document.hpp"
 #include "support/block_records.hpp"
 #include "support/pinned_bytes.hpp"
+#include "support/proved.hpp"
 
 namespace stepzip::stz {
 namespace {
@@ -287,12 +288,9 @@ TEST(PlainSteps, FastLevelsCodeThemByTheStepModelOrZstd) {
     for (const int level : {2, 3, 9}) {
         CompressOptions opt;
         opt.level = level;
-        auto z = compress(walk, opt);
-        ASSERT_TRUE(z.ok()) << z.error().message;
-        auto back = decompress(*z);
-        ASSERT_TRUE(back.ok()) << back.error().message;
-        EXPECT_EQ(*back, walk);
-        const auto records = test::block_records(*z);
+        const std::string z = test::compress_proved(walk, opt);
+        ASSERT_FALSE(z.empty()) << level;
+        const auto records = test::block_records(z);
         ASSERT_FALSE(records.empty());
         for (const auto& r : records) EXPECT_TRUE(r.type == kStepModel || r.type == kRaw) << level << ": " << r.type;
     }

@@ -16,6 +16,7 @@
 #include "stepzip/container.hpp"
 #include "support/block_records.hpp"
 #include "support/files.hpp"
+#include "support/proved.hpp"
 
 namespace stepzip {
 namespace {
@@ -555,12 +556,9 @@ TEST(InterruptBlock, ThoroughLevelsKeepTheSmallerOfTheTwo) {
         CompressOptions opt;
         opt.format = InputFormat::timed;
         opt.level = i == 0 ? 3 : 19;
-        auto z = compress(log, opt);
-        ASSERT_TRUE(z.ok()) << z.error().message;
-        auto back = decompress(*z);
-        ASSERT_TRUE(back.ok()) << back.error().message;
-        EXPECT_EQ(*back, log);
-        const auto records = test::block_records(*z);
+        const std::string z = test::compress_proved(log, opt);
+        ASSERT_FALSE(z.empty()) << opt.level;
+        const auto records = test::block_records(z);
         ASSERT_EQ(records.size(), 1u);
         ASSERT_EQ(records[0].type, stz::kExtended);
         payload[i] = std::string(records[0].payload);

@@ -1266,18 +1266,18 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // cannot code the block.
     if (s.timed && can_represent) {
         const TickCoding coding = s.level >= kMixedTickLevel ? TickCoding::mixed_sure : TickCoding::plain;
-        auto write = [&](TickCoding c) {
-            return timed.irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
+        auto write = [&](TickCoding c, bool irq) {
+            return irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
         };
-        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding);
+        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding, timed.irq);
         if (coding != TickCoding::plain && (tick.empty() || tick.size() > kMaxBlockPayload))
-            tick = write(TickCoding::plain);
+            tick = write(TickCoding::plain, timed.irq);
         // The thorough levels code the other one whole too, the smaller
         // kept: the check's first ticks chose the larger one for 3 of the 15
         // blocks of the eleven timed streams of docs/benchmarks.md (1.9-3.6
         // % larger; "Timed streams: both blocks at the thorough levels").
         if (s.thorough && !tick.empty()) {
-            const std::string other = timed.irq ? write_tick_block(block, coding) : write_interrupt_block(block, coding);
+            const std::string other = write(coding, !timed.irq);
             if (!other.empty() && other.size() < tick.size()) tick = other;
         }
         if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
