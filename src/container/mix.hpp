@@ -23,6 +23,7 @@
 #include <cstring>
 #include <memory>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 #if defined(__linux__)
@@ -52,13 +53,31 @@ inline constexpr std::int32_t kSquashPoints[33] = {
     4971,  7812,  11955, 17625, 24743, 32768, 40793, 47911, 53581, 57724, 60565,
     62428, 63615, 64357, 64816, 65097, 65269, 65374, 65438, 65476, 65500, 65514};
 
-/// Probability of a 1 (1..65535) of a stretched value x (clamped to +-2047):
-/// linear interpolation between the 33 points.
+/// squash on -2047..2047: linear interpolation between the 33 points.
+constexpr std::int32_t squash_points(std::int32_t x) {
+    const std::int32_t i = (x + 2048) >> 7, w = (x + 2048) & 127;
+    return (kSquashPoints[i] * (128 - w) + kSquashPoints[i + 1] * w + 64) >> 7;
+}
+
+/// squash_points at every x of -2047..2047 (8 KiB: the models call squash
+/// up to three times a coded bit; the table is read in L1).
+struct SquashTable {
+    std::uint16_t v[4095];
+    constexpr SquashTable() : v() {
+        for (std::int32_t x = -2047; x <= 2047; ++x) v[x + 2047] = static_cast<std::uint16_t>(squash_points(x));
+    }
+};
+inline constexpr SquashTable kSquash{};
+
+/// squash(x) of an x already within -2047..2047.
+[[gnu::always_inline]] inline std::int32_t squash_within(std::int32_t x) noexcept { return kSquash.v[x + 2047]; }
+
+/// Probability of a 1 (1..65535) of a stretched value x (clamped to +-2047).
 constexpr std::int32_t squash(std::int32_t x) {
     if (x > 2047) x = 2047;
     if (x < -2047) x = -2047;
-    const std::int32_t i = (x + 2048) >> 7, w = (x + 2048) & 127;
-    return (kSquashPoints[i] * (128 - w) + kSquashPoints[i + 1] * w + 64) >> 7;
+    if (std::is_constant_evaluated()) return squash_points(x);
+    return kSquash.v[x + 2047];
 }
 
 /// stretch(p) = the smallest x in -2047..2047 with squash(x) >> 4 >= p >> 4

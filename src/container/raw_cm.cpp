@@ -35,34 +35,49 @@ constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659F
 // Adaptive rate of a counter seen n times: 65536 / (n + 1.5).
 constexpr mixdetail::RecipTable<1024> kRate{};
 
+// A 4-bit count n's successor, saturating at `Limit`.
+template <unsigned Limit>
+struct NextCount {
+    std::uint16_t v[16];
+    constexpr NextCount() : v() {
+        for (unsigned n = 0; n < 16; ++n) v[n] = static_cast<std::uint16_t>(n + (n < Limit));
+    }
+};
+
 // A counter: probability of a 1 (16 bits, stored XOR 0x8000 so that zero
 // memory is p = 32768) and how often it was seen (saturating at `limit`).
+// (p XOR 0x8000 is p - 32768 as a signed 16-bit number: the arithmetic
+// below works on that, with the same bits stored.)
 struct Counter {
     std::uint16_t px;
     std::uint16_t n;
-    std::int32_t p() const noexcept { return px ^ 0x8000; }
+    std::int32_t p() const noexcept { return static_cast<std::int16_t>(px) + 32768; }
     [[gnu::always_inline]] void update(int bit, int limit) noexcept {
-        const std::int32_t p1 = p();
-        const std::int32_t target = bit ? 65535 : 0;
-        const std::int32_t q = p1 + static_cast<std::int32_t>((static_cast<std::int64_t>(target - p1) * kRate.v[n]) >> 16);
-        px = static_cast<std::uint16_t>(q ^ 0x8000);
+        const std::int32_t s = static_cast<std::int16_t>(px);
+        const std::int32_t target = bit ? 65535 - 32768 : -32768;
+        const std::int32_t q = s + static_cast<std::int32_t>((static_cast<std::int64_t>(target - s) * kRate.v[n]) >> 16);
+        px = static_cast<std::uint16_t>(q);
         if (n < limit) ++n;
     }
 };
 
 // A hashed context's counter in 16 bits: the probability of a 1 in 1/4096
 // (12 bits, stored XOR 0x800 so that zero memory is p = 2048) and how often
-// it was seen (4 bits, saturating at `limit` <= 15).
+// it was seen (4 bits, saturating at `Limit` <= 15). (The stored 12 bits
+// are p - 2048 as a signed 12-bit number, the top of a signed 16-bit one.)
 struct SmallCounter {
     std::uint16_t v;
-    std::int32_t p() const noexcept { return (v >> 4) ^ 0x800; }
+    std::int32_t s() const noexcept { return static_cast<std::int16_t>(v) >> 4; }  // p - 2048
+    std::int32_t p() const noexcept { return s() + 2048; }
     unsigned n() const noexcept { return v & 15u; }
-    [[gnu::always_inline]] void update(int bit, unsigned limit) noexcept {
-        const std::int32_t p1 = p();
-        const std::int32_t target = bit ? 4095 : 0;
+    template <unsigned Limit>
+    [[gnu::always_inline]] void update(int bit) noexcept {
+        static constexpr NextCount<Limit> kNext{};
+        const std::int32_t s1 = s();
+        const std::int32_t target = bit ? 4095 - 2048 : -2048;
         const unsigned n0 = n();
-        const std::int32_t q = p1 + static_cast<std::int32_t>(((target - p1) * kRate.v[n0]) >> 16);
-        v = static_cast<std::uint16_t>(((q ^ 0x800) << 4) | (n0 + (n0 < limit)));
+        const std::int32_t q = s1 + (((target - s1) * kRate.v[n0]) >> 16);
+        v = static_cast<std::uint16_t>((q << 4) | kNext.v[n0]);
     }
 };
 
@@ -74,13 +89,16 @@ struct Bucket {
 static_assert(sizeof(Bucket) == 32);
 
 // Adaptive probability map: rows of 33 points over the stretched domain,
-// every row squash((j - 16) * 128) at first. A row is written when first
-// used (a small block touches few of map 1's 65536 rows; filling them all
-// cost more than coding it).
+// every row squash((j - 16) * 128) at first. A `Lazy` map writes a row when
+// it is first used (a small block touches few of map 1's 65536 rows;
+// filling them all cost more than coding it); the others are filled at once.
+template <bool Lazy>
 class Apm {
 public:
-    explicit Apm(std::size_t rows) : t_(new std::uint16_t[rows * 33]), ready_(rows, 0) {
+    explicit Apm(std::size_t rows) : t_(new std::uint16_t[rows * 33]), ready_(Lazy ? rows : 0, 0) {
         for (int j = 0; j < 33; ++j) first_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        if (!Lazy)
+            for (std::size_t row = 0; row < rows; ++row) std::copy(first_.begin(), first_.end(), &t_[row * 33]);
     }
     void prefetch(std::size_t row) const noexcept {
         __builtin_prefetch(&t_[row * 33]);
@@ -88,9 +106,11 @@ public:
     }
     [[gnu::always_inline]] std::int32_t refine(std::int32_t y, std::size_t row) noexcept {
         std::uint16_t* r = &t_[row * 33];
-        if (!ready_[row]) [[unlikely]] {
-            std::copy(first_.begin(), first_.end(), r);
-            ready_[row] = 1;
+        if constexpr (Lazy) {
+            if (!ready_[row]) [[unlikely]] {
+                std::copy(first_.begin(), first_.end(), r);
+                ready_[row] = 1;
+            }
         }
         const std::int32_t q = y + 2048, j = q >> 7, w = q & 127;
         at_ = &r[j + (w >> 6)];
@@ -102,7 +122,7 @@ public:
     }
 
 private:
-    std::unique_ptr<std::uint16_t[]> t_;  // (rows not yet used are not initialized)
+    std::unique_ptr<std::uint16_t[]> t_;  // (a lazy map's rows not yet used are not initialized)
     std::vector<std::uint8_t> ready_;
     std::array<std::uint16_t, 33> first_{};
     std::uint16_t* at_ = nullptr;
@@ -157,15 +177,16 @@ public:
 
     /// Probability (1..65535) that the next bit is 1.
     [[gnu::always_inline]] std::int32_t predict() noexcept {
-        const std::size_t row1 = c0_ | ((c4_ & 0xFFu) << 8);
-        const std::size_t row2 = static_cast<std::size_t>(((c4_ & 0xFFFFu) * 0x9E3779B1u ^ c0_ * 0x85EBCA6Bu) >> (32 - kApm2Bits));
-        apm1_.prefetch(row1);
-        apm2_.prefetch(row2);
+        const std::size_t row1 = apm1_row(c0_, c4_);
+        const std::size_t row2 = apm2_row(c0_, c4_);
+        // (a counter never seen is all zero, p = 2048, whose stretch is 0:
+        // the input of a context not seen is 0)
+        static_assert(mixdetail::kStretch.v[2048] == 0);
         const int node = nibble_node();
         for (int k = 0; k < kContexts; ++k) {
             SmallCounter& c = bucket_[k]->c[node];
             at_[k] = &c;
-            x_[static_cast<std::size_t>(k)] = c.n() == 0 ? 0 : stretch(static_cast<std::uint32_t>(c.p()) << 4);
+            x_[static_cast<std::size_t>(k)] = mixdetail::kStretch.v[c.p()];
         }
         o1_at_ = &o1_[((c4_ & 0xFFu) << 8) | c0_];
         x_[kContexts] = stretch(static_cast<std::uint32_t>(o1_at_->p()));
@@ -190,10 +211,9 @@ public:
         const unsigned sel2 = static_cast<unsigned>(std::min(nfield_, 15)) * 16 +
                               std::min<unsigned>(static_cast<unsigned>(pos_ - line_ - fstart_), 15);
         ws2_ = &w2_[(static_cast<std::size_t>(mq) * 256 + sel2) * kInputs];
-        y1_ = dot(ws1_);
-        y2_ = dot(ws2_);
+        dot2(ws1_, ws2_, y1_, y2_);
         const std::int32_t y = (y1_ + y2_) >> 1;
-        const std::int32_t mixed = mixdetail::squash(y);
+        const std::int32_t mixed = mixdetail::squash_within(y);
         const std::int32_t a0 = apm0_.refine(y, c0_);
         const std::int32_t a1 = apm1_.refine(y, row1);
         const std::int32_t a2 = apm2_.refine(y, row2);
@@ -205,6 +225,14 @@ public:
     /// training: the same result, less time waiting.
     [[gnu::always_inline]] void update(int bit) noexcept {
         const unsigned c0 = (c0_ << 1) | static_cast<unsigned>(bit);
+        {
+            // (the rows of the maps that refine the next bit)
+            const bool last = bitpos_ == 7;
+            const unsigned next_c0 = last ? 1u : c0;
+            const std::uint32_t next_c4 = last ? (c4_ << 8) | (c0 & 0xFFu) : c4_;
+            apm1_.prefetch(apm1_row(next_c0, next_c4));
+            apm2_.prefetch(apm2_row(next_c0, next_c4));
+        }
         if (bitpos_ == 2) {
             // (the second nibble's buckets for both values of the 4th bit)
             touch_buckets(c0 << 1);
@@ -224,7 +252,7 @@ public:
         }
         train(ws1_, y1_, bit, kMixRate);
         train(ws2_, y2_, bit, kMixRate);
-        for (int k = 0; k < kContexts; ++k) at_[k]->update(bit, kLimit);
+        for (int k = 0; k < kContexts; ++k) at_[k]->update<kLimit>(bit);
         o1_at_->update(bit, kLimitLow);
         o0_[c0_].update(bit, kLimitLow);
         if (expect_ >= 0) {
@@ -251,16 +279,29 @@ public:
 private:
     int nibble_node() const noexcept { return static_cast<int>(node_); }
 
+    // The rows of maps 1 and 2 by the bits of the byte so far (c0) and the
+    // bytes before (c4).
+    static std::size_t apm1_row(unsigned c0, std::uint32_t c4) noexcept { return c0 | ((c4 & 0xFFu) << 8); }
+    static std::size_t apm2_row(unsigned c0, std::uint32_t c4) noexcept {
+        return static_cast<std::size_t>(((c4 & 0xFFFFu) * 0x9E3779B1u ^ c0 * 0x85EBCA6Bu) >> (32 - kApm2Bits));
+    }
+
     int len_bucket() const noexcept { return len_ < 16 ? len_ : std::min(16 + ((len_ - 16) >> 3), 31); }
 
-    std::int32_t dot(const std::int32_t* w) const noexcept {
-        std::int64_t d = 0;
-        for (int k = 0; k < kInputs; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
-        d >>= 16;
-        return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
+    // The two mixers' outputs: the dot products of their weights with the
+    // inputs, in 16.16, clamped to +-2047.
+    void dot2(const std::int32_t* w1, const std::int32_t* w2, std::int32_t& y1, std::int32_t& y2) const noexcept {
+        std::int64_t d1 = 0, d2 = 0;
+        for (int k = 0; k < kInputs; ++k) {
+            const std::int64_t x = x_[static_cast<std::size_t>(k)];
+            d1 += w1[k] * x;
+            d2 += w2[k] * x;
+        }
+        y1 = static_cast<std::int32_t>(std::clamp<std::int64_t>(d1 >> 16, -2047, 2047));
+        y2 = static_cast<std::int32_t>(std::clamp<std::int64_t>(d2 >> 16, -2047, 2047));
     }
     void train(std::int32_t* w, std::int32_t y, int bit, int rate) noexcept {
-        const std::int32_t e = (bit << 16) - mixdetail::squash(y);
+        const std::int32_t e = (bit << 16) - mixdetail::squash_within(y);
         if (e < kSkip && e > -kSkip) return;
         const std::int64_t err = static_cast<std::int64_t>(e) * rate;
         for (int k = 0; k < kInputs; ++k) {
@@ -428,7 +469,9 @@ private:
     std::int32_t* ws1_ = nullptr;
     std::int32_t* ws2_ = nullptr;
     std::int32_t y1_ = 0, y2_ = 0;
-    Apm apm0_, apm1_, apm2_;
+    Apm<false> apm0_;
+    Apm<true> apm1_;
+    Apm<false> apm2_;
     unsigned c0_ = 1;
     unsigned node_ = 1;  // the bits of the nibble so far, after a leading 1
     int bitpos_ = 0;
