@@ -177,8 +177,7 @@ public:
 
     /// Probability (1..65535) that the next bit is 1.
     [[gnu::always_inline]] std::int32_t predict() noexcept {
-        const std::size_t row1 = apm1_row(c0_, c4_);
-        const std::size_t row2 = apm2_row(c0_, c4_);
+        const std::size_t row1 = row1_, row2 = row2_;
         // (a counter never seen is all zero, p = 2048, whose stretch is 0:
         // the input of a context not seen is 0)
         static_assert(mixdetail::kStretch.v[2048] == 0);
@@ -230,8 +229,10 @@ public:
             const bool last = bitpos_ == 7;
             const unsigned next_c0 = last ? 1u : c0;
             const std::uint32_t next_c4 = last ? (c4_ << 8) | (c0 & 0xFFu) : c4_;
-            apm1_.prefetch(apm1_row(next_c0, next_c4));
-            apm2_.prefetch(apm2_row(next_c0, next_c4));
+            row1_ = apm1_row(next_c0, next_c4);
+            row2_ = apm2_row(next_c0, next_c4);
+            apm1_.prefetch(row1_);
+            apm2_.prefetch(row2_);
         }
         if (bitpos_ == 2) {
             // (the second nibble's buckets for both values of the 4th bit)
@@ -469,6 +470,7 @@ private:
     std::int32_t* ws1_ = nullptr;
     std::int32_t* ws2_ = nullptr;
     std::int32_t y1_ = 0, y2_ = 0;
+    std::size_t row1_ = apm1_row(1, 0), row2_ = apm2_row(1, 0);  // the next bit's rows of maps 1 and 2
     Apm<false> apm0_;
     Apm<true> apm1_;
     Apm<false> apm2_;
