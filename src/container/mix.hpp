@@ -285,10 +285,11 @@ private:
         w1_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
         w2_ = &weights_[(static_cast<std::size_t>(kMixSets + field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1)) * kInputs];
         const std::int32_t s1 = dot<N>(w1_), s2 = dot<N>(w2_);
-        out1_ = mixdetail::squash(s1);
-        out2_ = mixdetail::squash(s2);
+        // (dot() clamps to +-2047)
+        out1_ = mixdetail::squash_within(s1);
+        out2_ = mixdetail::squash_within(s2);
         const std::int32_t s = (s1 + s2) >> 1;
-        const std::int32_t mixed = mixdetail::squash(s);
+        const std::int32_t mixed = mixdetail::squash_within(s);
         // Adaptive probability map on the slot: interpolated between the two
         // nearest of 33 points; the nearer one is trained.
         const std::int32_t pos = s + 2048;

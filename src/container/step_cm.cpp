@@ -258,7 +258,7 @@ private:
         const std::int32_t s1 = dot(w1, x), s2 = Light ? s1 : dot(w2, x);
         std::int32_t p;
         if constexpr (Light) {
-            p = mixdetail::squash(s1);
+            p = mixdetail::squash_within(s1);  // (dot() clamps to +-2047)
         } else {
             const std::int32_t s = (s1 + s2) >> 1;
             const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
@@ -275,9 +275,9 @@ private:
             io.rc.encode_p(static_cast<std::uint32_t>(65536 - p), want);
             bit = want;
         }
-        train(w1, x, mixdetail::squash(s1), bit);
+        train(w1, x, mixdetail::squash_within(s1), bit);
         if constexpr (!Light) {
-            train(w2, x, mixdetail::squash(s2), bit);
+            train(w2, x, mixdetail::squash_within(s2), bit);
             apm1_.update(bit);
             apm2_.update(bit);
         }
