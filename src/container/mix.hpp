@@ -23,7 +23,6 @@
 #include <cstring>
 #include <memory>
 #include <new>
-#include <type_traits>
 #include <vector>
 
 #if defined(__linux__)
@@ -70,14 +69,13 @@ struct SquashTable {
 inline constexpr SquashTable kSquash{};
 
 /// squash(x) of an x already within -2047..2047.
-[[gnu::always_inline]] inline std::int32_t squash_within(std::int32_t x) noexcept { return kSquash.v[x + 2047]; }
+[[gnu::always_inline]] constexpr std::int32_t squash_within(std::int32_t x) noexcept { return kSquash.v[x + 2047]; }
 
 /// Probability of a 1 (1..65535) of a stretched value x (clamped to +-2047).
 constexpr std::int32_t squash(std::int32_t x) {
     if (x > 2047) x = 2047;
     if (x < -2047) x = -2047;
-    if (std::is_constant_evaluated()) return squash_points(x);
-    return kSquash.v[x + 2047];
+    return squash_within(x);
 }
 
 /// stretch(p) = the smallest x in -2047..2047 with squash(x) >> 4 >= p >> 4
