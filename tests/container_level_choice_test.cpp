@@ -76,18 +76,51 @@ TEST(LevelChoice, RepeatedGlyphsStayATableBlockAtLevel1) {
 
 TEST(LevelChoice, ManyBlocksRoundTripAndDecodeTheSameAcrossThreads) {
     // several blocks of the same data: the window passes after the choice
+    // (level 1: the table blocks coded once, late, from the window)
     const std::string one = corpus("plotter/gnuplot-grbl.fc");
     const std::string input = one + one + one;  // 1.3 M steps: two blocks
+    for (int level : {1, 3}) {
+        CompressOptions opt;
+        opt.level = level;
+        auto a = compress(input, opt);
+        opt.threads = 2;
+        auto b = compress(input, opt);
+        ASSERT_TRUE(a.ok());
+        ASSERT_TRUE(b.ok());
+        EXPECT_EQ(*a, *b) << "level " << level;
+        const Coded c = code(input, level);
+        EXPECT_GE(c.info.blocks, 2u);
+    }
+}
+
+Coded code_in_blocks(const std::string& input, int level, std::size_t block_steps) {
     CompressOptions opt;
-    opt.level = 3;
-    auto a = compress(input, opt);
-    opt.threads = 2;
-    auto b = compress(input, opt);
-    ASSERT_TRUE(a.ok());
-    ASSERT_TRUE(b.ok());
-    EXPECT_EQ(*a, *b);
-    const Coded c = code(input, 3);
-    EXPECT_GE(c.info.blocks, 2u);
+    opt.level = level;
+    opt.block_steps = block_steps;
+    Coded c;
+    c.frame = test::compress_proved(input, opt);
+    auto info = inspect_stream(stz::memory_reader(c.frame));
+    EXPECT_TRUE(info.ok());
+    if (info.ok()) c.info = *info;
+    return c;
+}
+
+TEST(LevelChoice, Level1TableBlocksFindTheWindowAndWeakBlocksStayZstds) {
+    // Below level 3 a large block's table block is coded once, after the
+    // blocks before it are known (block_strategy.cpp, table_late_pays()):
+    // the second copy of a glyph file, in later blocks of 2^17 steps, is
+    // found in the window.
+    const std::string glyphs = corpus("glyphs/dejavu-4.fc");  // 301 042 steps
+    const Coded once = code_in_blocks(glyphs, 1, 1u << 17), twice = code_in_blocks(glyphs + glyphs, 1, 1u << 17);
+    EXPECT_EQ(twice.info.table_blocks, twice.info.blocks);
+    EXPECT_GE(twice.info.blocks, 4u);
+    EXPECT_LT(twice.frame.size(), once.frame.size() * 11 / 10);
+    // A random walk's table block is weak (under 5:1): zstd of its bytes
+    // is tried and kept, block by block, as before.
+    const std::string walk = corpus("random/walk-8.fc");  // 100 000 steps
+    const Coded w = code_in_blocks(walk + walk, 1, 100000);
+    EXPECT_EQ(w.info.blocks, 2u);
+    EXPECT_EQ(w.info.raw_blocks, w.info.blocks);
 }
 
 }  // namespace

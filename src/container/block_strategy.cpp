@@ -309,7 +309,10 @@ constexpr std::size_t kLightCmGain = 32;
 // check takes the same sample and, for a table block without arcs, the same cut.
 struct LightSample {
     std::size_t light = 0, table = 0, step = 0;
+    std::uint64_t steps = 0;  ///< the sample's
 };
+
+bool light_wins(std::size_t light, std::size_t other) { return light * kLightCmGain < other * (kLightCmGain - 1); }
 
 bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, const std::string& best,
                       const LightSample& made) {
@@ -317,7 +320,7 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
         job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
         return false;
-    auto wins = [](std::size_t light, std::size_t other) { return light * kLightCmGain < other * (kLightCmGain - 1); };
+    const auto wins = light_wins;
     // (the whole block's coding is kept for cm_pass(), which takes it when
     // the window holds no steps)
     auto whole_wins = [&] {
@@ -341,6 +344,39 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     // do not (the same glyphs at the same places: 0.875 on the sample, 1.01
     // on the whole block of pages-big-grbl.fc): against it the whole block.
     return type != kTable || whole_wins();
+}
+
+// Below kFastStepLevel a large block's table block is coded once, by the
+// third pass (window_items_pass(), from the window when it holds items),
+// where the only other coding the first pass would try is zstd of the bytes
+// (tried when the table block comes under 5:1): when the table block of its
+// sample (spread_chains(), no window; the smaller share of matches makes it
+// the larger) is at 5:1 or better. Before, the first pass coded the table
+// block without the window and the third pass again with it (12-26 % of
+// -L 1's instructions on several-MB inputs of many blocks), and the
+// window's coding was the smaller on every block of those inputs
+// (docs/benchmarks.md "Fast tier: each table block coded once").
+// `plain`: the block is plain steps (choose_block()); `made`: what
+// light_cm_first() coded of the sample (at kLightCmLevel: the light model
+// must lose to the table block there, as light_cm_may_win() would find).
+bool table_late_pays(const BlockJob& job, const EncoderSettings& s, const Cut& segs, bool plain,
+                     const LightSample& made) {
+    if (s.thorough || s.timed || s.window_log == 0 || s.arc_method || s.level >= kFastStepLevel || plain ||
+        job.steps < kSmallBlockSteps || job.steps > kMaxBlockSteps || job.bytes.size() > kMaxBlockBytes)
+        return false;
+    std::size_t table = made.table;
+    std::uint64_t steps = made.steps;
+    if (s.level >= kLightCmLevel && job.block.axes == 2) {
+        if (job.steps <= kCmSampleSteps || made.light == 0 || table == 0 || light_wins(made.light, table)) return false;
+    } else if (table == 0) {
+        Block sample;
+        Cut cut;
+        spread_chains(job.block, segs, kCmSampleSteps, sample, cut);
+        table = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
+        steps = step_count(sample);
+    }
+    // 5:1 of the sample's share of the block's bytes, by its steps
+    return table * 5 * job.steps <= job.bytes.size() * steps;
 }
 
 // A step-model block of more than kMixSampleSteps steps is coded mixed only
@@ -772,6 +808,7 @@ bool light_cm_first(const Block& block, std::uint64_t steps, const EncoderSettin
         s.segmenter == SegmenterKind::optimal && !s.optimal_recut ? SegmenterKind::greedy : s.segmenter;
     if (!aligned && !segment_block(sample, s.profile, kind, cut, stats, 0, s.source, s.cut_cache)) return false;
     made.light = write_light_cm_step_model(sample).size();
+    made.steps = step_count(sample);
     // The other encodings one by one, the likelier to win first (on chains
     // too dense for the segment model, random walks, the step model; else
     // the table block, where plots fail): each size is reused by the later
@@ -1083,13 +1120,22 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
             }
         }
     } else if (!s.thorough && representable(first, s.profile, first.axes)) {
-        // One sample picks the profile (auto) and the cut.
+        // One sample picks the profile (auto) and the cut. On 4-connected
+        // chains (those eval4 represents) every segment of an 8-connected
+        // profile is a run along one axis (a step of both is a diagonal
+        // one), whose phase is implied: eval8, grbl and marlin cut and code
+        // them alike, and the later two, which a tie never chooses, are not
+        // tried (two fifths of the choice on such chains).
+        static_assert(kAllProfiles[0] == Profile::eval4 && kAllProfiles[1] == Profile::eval8);
         const Block sample = sample_of(first, kSampleSteps);
         std::size_t best = SIZE_MAX;
+        bool four_connected = false;
         for (Profile p : kAllProfiles) {
             if (s.profile_named && p != s.profile) continue;
+            if (four_connected && (p == Profile::grbl || p == Profile::marlin)) continue;
             bool aligned = false;
             const std::size_t n = sample_size(sample, p, s, aligned);
+            if (p == Profile::eval4) four_connected = n != SIZE_MAX;
             if (n < best) {
                 best = n;
                 s.profile = p;
@@ -1102,6 +1148,18 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
                                                       " does not take " + std::to_string(s.axes) + " axes");
     return {};
 }
+
+namespace {
+// What the block `job` chose adds to the window (with one): its symbols
+// when a block needs them (compress.cpp), its items after the second pass.
+void add_contribution(BlockJob& job, const EncoderSettings& s) {
+    if (s.window_log == 0) return;
+    auto w = std::make_shared<WindowBlock>();
+    w->weight = job.steps + job.block.chains.size();
+    w->first_type = job.type;
+    job.contribution = std::move(w);
+}
+}  // namespace
 
 void choose_block(BlockJob& job, const EncoderSettings& s) {
     const Block& block = job.block;
@@ -1188,6 +1246,14 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         const std::uint64_t nsegs = segment_count(segs);
         if (s.thorough) chain_payload = write_chain_payload(block, s.profile, segs);
         segment_model_only = !s.thorough && nsegs * 1000 < kSegmentModelOnly * job.steps;
+        if (table_late_pays(job, s, segs, plain, light_sample)) {
+            // (what the end of this function sets for a table block)
+            job.table_late = true;
+            job.type = kTable;
+            job.cut = std::move(segs);
+            add_contribution(job, s);
+            return;
+        }
         if (!s.thorough && !s.timed) {
             TableItemKeys keys;
             unsigned record_type = kTable;
@@ -1386,12 +1452,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     if (type != kSegmentModel && type != kTable && type != kExtended) job.cut.clear();
     if (type != kTable) job.table_keys = {};
     if (type == kRaw) job.stats = {};
-    if (s.window_log != 0) {
-        auto w = std::make_shared<WindowBlock>();
-        w->weight = job.steps + block.chains.size();
-        w->first_type = type;
-        job.contribution = std::move(w);  // its symbols: when a block needs them (compress.cpp)
-    }
+    add_contribution(job, s);
 }
 
 namespace {
@@ -1525,19 +1586,27 @@ void mixed_pass(BlockJob& job, const EncoderSettings& s, const WindowView& windo
 namespace {
 
 // The block's segment items coded again from the window (table or segment
-// model, as chosen), kept when smaller.
+// model, as chosen), kept when smaller; a table block coded late
+// (job.table_late) is coded here only, with the window when it holds
+// items, else without.
 void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView& window) {
     if (job.type == kTable) {
-        if (std::none_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); })) return;
+        const bool w = std::any_of(window.begin(), window.end(), [](const auto& b) { return !b->items.starts.empty(); });
+        if (!w && !job.table_late) return;
         // (the contribution's keys: window_segment_pass() kept them)
         const TableItemKeys* own =
             job.contribution ? &window_keys(*job.contribution, s.profile, job.block.axes) : nullptr;
         unsigned record_type = kTable;
-        const std::string table =
-            write_table_block(job.block, s.profile, job.cut, table_effort(s.level), &window, own, nullptr, &record_type);
-        if (table.size() > kMaxBlockPayload) return;
-        std::string rec = make_stored_record(record_type, job.flags | kFlagWindow, table);
-        if (rec.size() < job.record.size()) job.record = std::move(rec);
+        const std::string table = write_table_block(job.block, s.profile, job.cut, table_effort(s.level),
+                                                    w ? &window : nullptr, own, nullptr, &record_type);
+        if (table.size() > kMaxBlockPayload) {
+            if (job.table_late)
+                job.error = make_error(Errc::limit, s.source + ": chain " + std::to_string(job.first_chain + 1) +
+                                                        ": its block's table block exceeds the payload limit");
+            return;
+        }
+        std::string rec = make_stored_record(record_type, job.flags | (w ? kFlagWindow : 0u), table);
+        if (job.record.empty() || rec.size() < job.record.size()) job.record = std::move(rec);
         return;
     }
     if (job.type == kExtended) {
@@ -1563,7 +1632,7 @@ void window_segment_pass(BlockJob& job, const EncoderSettings& s, const WindowVi
     // keys, from the first pass, are kept with it for the later blocks.
     if (job.type == kTable && job.contribution)
         window_keys(*job.contribution, s.profile, job.block.axes, &job.table_keys);
-    if (!window.empty()) window_items_pass(job, s, window);
+    if (!window.empty() || job.table_late) window_items_pass(job, s, window);
     mixed_pass(job, s, window);
 }
 

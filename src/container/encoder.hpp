@@ -117,6 +117,9 @@ struct BlockJob {
     std::string light_model;  ///< the light model's payload of the whole block without the window, when made
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
+    /// Table block coded once, by the third pass (from the window when it
+    /// holds items): `record` is empty until then.
+    bool table_late = false;
 
     // The round-trip proof.
     Block decoded;  ///< the block as the decoder sees it (chain blocks)
