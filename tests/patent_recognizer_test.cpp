@@ -102,5 +102,38 @@ TEST(PatentRecognizer, MakeRecognizerAndFitAgree) {
     }
 }
 
+// read() takes what can_extend() and extend() take, and longest_valid()
+// after it is the longest prefix fit_segment() fits, on words much longer
+// than their segments (most candidates rejected by the last contradicting
+// pair) with a change of sign or a diagonal step here and there.
+TEST(PatentRecognizer, ReadAgreesWithExtendAndFit) {
+    std::mt19937 rng(17);
+    PatentRecognizer rec, one_by_one;
+    for (int trial = 0; trial < 400; ++trial) {
+        const int sx = rng() % 2 ? 1 : -1, sy = rng() % 2 ? 1 : -1;
+        const int slope = 1 + static_cast<int>(rng() % 14);
+        std::vector<Step> steps;
+        for (int k = 0; k < 150; ++k) {
+            const unsigned r = rng() % 1000;
+            if (r < 3) steps.push_back(make_step2(-sx, 0));
+            else if (r < 5) steps.push_back(make_step2(sx, sy));
+            else steps.push_back(static_cast<int>(rng() % 16) < slope ? make_step2(0, sy) : make_step2(sx, 0));
+        }
+        one_by_one.reset();
+        for (Step s : steps) {
+            if (!one_by_one.can_extend(s)) break;
+            one_by_one.extend(s);
+        }
+        ASSERT_EQ(rec.read(steps), one_by_one.length());
+        ASSERT_EQ(rec.delta(), one_by_one.delta());
+        std::int64_t longest = 0;
+        for (std::int64_t m = 1; m <= rec.length(); ++m)
+            if (fit_segment(Profile::patent, std::span<const Step>(steps.data(), static_cast<std::size_t>(m)), 2))
+                longest = m;
+        ASSERT_EQ(rec.longest_valid(), longest) << "trial " << trial;
+        ASSERT_EQ(one_by_one.longest_valid(), longest) << "trial " << trial;
+    }
+}
+
 }  // namespace
 }  // namespace stepzip

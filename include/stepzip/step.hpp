@@ -58,6 +58,13 @@ constexpr int step_weight(Step s) noexcept {
     return n;
 }
 
+/// True when exactly one axis moves in step `s` (step_weight(s) == 1,
+/// without a population count, which baseline x86-64 makes a call).
+constexpr bool step_moves_one_axis(Step s) noexcept {
+    const unsigned moving = s & 0x555u;
+    return moving != 0 && (moving & (moving - 1)) == 0;
+}
+
 /// Adds step `s` to point `p` over `axes` axes.
 constexpr void apply_step(Point& p, Step s, int axes) noexcept {
     for (int i = 0; i < axes; ++i) p[i] += step_axis(s, i);

@@ -66,7 +66,7 @@ std::pair<std::int64_t, std::int64_t> word_phases(std::span<const Step> steps, L
 
 std::optional<Segment> fit_eval4(std::span<const Step> steps, const Point& delta) {
     for (Step s : steps)
-        if (std::popcount(s & 0x555u) != 1) return std::nullopt;
+        if (!step_moves_one_axis(s)) return std::nullopt;
     const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
     Segment seg;
     seg.delta = delta;
@@ -111,7 +111,7 @@ std::optional<Segment> fit_leading(Profile p, std::span<const Step> steps, int a
 // F0 < -f and a free y-step needs F0 >= -f: one linear constraint per step.
 std::optional<Segment> fit_patent(std::span<const Step> steps, const Point& delta) {
     for (Step s : steps)
-        if (std::popcount(s & 0x555u) != 1) return std::nullopt;
+        if (!step_moves_one_axis(s)) return std::nullopt;
     const std::int64_t a = std::llabs(delta[0]), b = std::llabs(delta[1]);
     std::int64_t x = a, y = b, f = 0, lo = -kInf, hi = kInf;
     for (Step s : steps) {

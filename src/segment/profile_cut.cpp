@@ -16,9 +16,7 @@ std::int64_t ProfileCut::longest_other(std::span<const Step> steps) {
     if (steps.empty()) return 0;
     if (runs_) return longest_exact_prefix(*runs_, steps);
     PatentRecognizer& rec = *patent_;
-    rec.reset();
-    for (std::size_t i = 0; i < steps.size() && rec.can_extend(steps[i]); ++i)
-        if (!rec.extend(steps[i])) break;
+    rec.read(steps);
     return std::max<std::int64_t>(rec.longest_valid(), 1);
 }
 

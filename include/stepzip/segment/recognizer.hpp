@@ -116,11 +116,14 @@ inline constexpr std::int64_t kPatentMaxSegment = 1024;
 /// mode adds the *remaining* counters, so whether a prefix is exact depends
 /// on its own totals: each free step (both counters non-zero) bounds F0 by
 /// one linear constraint, intersected with phase_range(patent, X, Y); the
-/// check stops at the first contradiction.
+/// check stops at the first contradiction. The pair of constraints that
+/// contradicted each other last is tried first on the next candidate (the
+/// next shorter one, in longest_valid(): usually the same pair contradicts
+/// again), which rejects most candidates in O(1).
 /// Invariant: the steps read so far keep one axis per step and one sign per
 /// axis. Complexity: O(1) per extend(); valid() O(length);
 /// longest_valid() O(length) per candidate, longest first. O(length) memory.
-/// Not thread-safe (an object per thread).
+/// Not thread-safe (an object per thread; const calls update the pair).
 class PatentRecognizer {
 public:
     void reset() noexcept;
@@ -130,11 +133,14 @@ public:
     /// Appends `s` (precondition: can_extend(s)). Returns false once the cap
     /// is reached: no longer segment is accepted.
     bool extend(Step s);
+    /// reset(), then every step of `steps` that can_extend() takes, as
+    /// extend() would, without a call per step. Returns the count read.
+    std::int64_t read(std::span<const Step> steps);
     /// The steps read so far form one exact segment.
-    bool valid() const noexcept;
+    bool valid() const;
     /// Length of the longest prefix of the steps read that is one exact
     /// segment (1 when only one step is; 0 when none was read).
-    std::int64_t longest_valid() const noexcept;
+    std::int64_t longest_valid() const;
     std::int64_t length() const noexcept { return static_cast<std::int64_t>(ystep_.size()); }
     const Point& delta() const noexcept { return delta_; }
 
@@ -142,9 +148,20 @@ private:
     // Is the prefix of m steps, xs of them x-steps, exact under some phase
     // in its phase range?
     bool exact(std::int64_t m, std::int64_t xs) const noexcept;
+    // Brings xs_before_ and c_ up to the steps read.
+    void sync() const;
 
-    std::vector<std::uint8_t> ystep_;  // per step read: 1 for a y-step
+    // Per step k read: whether it is a y-step; made by sync(): the x-steps
+    // before it (i_k; j_k = k - i_k) and c_k, the part of the adder's change
+    // before it that does not depend on the totals: f_k = i_k*Y - j_k*X + c_k.
+    std::vector<std::uint8_t> ystep_;
+    mutable std::vector<std::int32_t> xs_before_;
+    mutable std::vector<std::int64_t> c_;
+    mutable std::int32_t synced_xs_ = 0;  // i and c of the next step to sync
+    mutable std::int64_t synced_c_ = 0;
     Point delta_{};
+    // The steps of the two constraints that contradicted last (-1: none).
+    mutable std::int64_t last_lo_ = -1, last_hi_ = -1;
 };
 
 /// The recognizer of a profile: PatentRecognizer for `patent`, a
