@@ -140,13 +140,13 @@ struct EncSide {
 // Decoder side: the block's tables, the rANS stream and the bit stream.
 struct DecSide {
     static constexpr bool kDecode = true;
-    const std::array<DecodeTable, kTables>* tables;
+    std::array<DecodeTable, kTables> tables;
     RansDecoder rans;
     BitReader bits;
     bool failed = false;
     [[gnu::always_inline]] unsigned sym(int t, unsigned) {
-        const DecodeTable& d = (*tables)[static_cast<std::size_t>(t)];
-        if (d.slots.empty()) {
+        const DecodeTable& d = tables[static_cast<std::size_t>(t)];
+        if (d.precision < 0) {
             failed = true;  // a table the payload left unused
             return 0;
         }
@@ -880,12 +880,14 @@ bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
         std::uint64_t s;
         if (!cur.varint(s) || s >= size) return false;
         d.precision = 0;
+        d.mask = 0;
         d.slots.assign(1, Slot{static_cast<std::uint16_t>(s), 1, 0});
         return true;
     }
     std::uint8_t prec;
     if (!cur.u8(prec) || prec < 1 || prec > kMaxPrecision || (std::uint64_t{1} << prec) < used) return false;
     d.precision = prec;
+    d.mask = (1u << prec) - 1;
     d.slots.resize(std::size_t{1} << prec);
     std::uint64_t s = 0, start = 0;
     for (std::uint64_t k = 0; k < used; ++k) {
@@ -896,7 +898,7 @@ bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
             return false;
         for (std::uint64_t i = 0; i <= f1; ++i)
             d.slots[start + i] = Slot{static_cast<std::uint16_t>(s), static_cast<std::uint16_t>(f1 + 1),
-                                      static_cast<std::uint16_t>(start)};
+                                      static_cast<std::uint16_t>(i)};
         start += f1 + 1;
     }
     return start == (std::uint64_t{1} << prec);
@@ -1317,7 +1319,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         return error(Errc::corrupt, size_at, "bad rANS stream size");
     const std::size_t rans_at = cur.pos() - rans_bytes.size();
     const std::size_t bits_at = cur.pos();
-    DecSide io{&tables, RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
+    DecSide io{std::move(tables), RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
     TableCoder<DecSide, kAxes> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;
