@@ -248,17 +248,15 @@ public:
         at = s;
         return at;
     }
-    /// A new segment of zeros, written in place.
-    Segment& emplace() {
-        Segment& at = slot();
-        at = Segment{};
-        return at;
-    }
+    /// A new segment of zeros, written in place (a chunk is made of zeros
+    /// and each of its segments handed out once: no second clearing).
+    Segment& emplace() { return slot(); }
 
 private:
     Segment& slot() {
         if (used_ == size_) {
             size_ = std::min<std::size_t>(kMaxChunk, std::size_t{64} << std::min<std::size_t>(chunks_.size(), 6));
+            // Zeros: Segment's member initializers (emplace() relies on them).
             chunks_.push_back(std::make_unique_for_overwrite<Segment[]>(size_));
             used_ = 0;
         }
@@ -477,18 +475,23 @@ public:
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
-    // Enters a segment of own_ (stored in place) into the history.
-    [[gnu::flatten]] void push_seg(const Segment& seg) {
+    // Enters a segment of own_ (stored in place), of leading axis `lead`
+    // and sign mask `neg`, into the history.
+    [[gnu::flatten]] void push_seg(const Segment& seg, int lead, unsigned neg) {
         segs_.push_back(&seg);
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
-        note_fields(seg);
+        note_fields(seg, lead, neg);
     }
 
     void note_fields(const Segment& seg) {
-        const int lead = leading_axis(seg.delta, ax());
         unsigned neg = 0;
         for (int i = 0; i < ax(); ++i)
             if (seg.delta[i] < 0) neg |= 1u << i;
+        note_fields(seg, leading_axis(seg.delta, ax()), neg);
+    }
+    // The field contexts after `seg`, whose leading axis and sign mask the
+    // caller knows.
+    void note_fields(const Segment& seg, int lead, unsigned neg) {
         if (ax() == 2) {
             const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
             prev_turn_ = (oct - prev_oct_) & 7;
@@ -587,7 +590,7 @@ public:
         recent_.push_front(id);
         succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
-        push_seg(seg);
+        push_seg(seg, lead, neg);  // (the lead and signs the totals have: checked above)
         prev_op_ = kAfterFull;
         return true;
     }
