@@ -140,13 +140,13 @@ struct EncSide {
 // Decoder side: the block's tables, the rANS stream and the bit stream.
 struct DecSide {
     static constexpr bool kDecode = true;
-    const std::array<DecodeTable, kTables>* tables;
+    std::array<DecodeTable, kTables> tables;
     RansDecoder rans;
     BitReader bits;
     bool failed = false;
     [[gnu::always_inline]] unsigned sym(int t, unsigned) {
-        const DecodeTable& d = (*tables)[static_cast<std::size_t>(t)];
-        if (d.slots.empty()) {
+        const DecodeTable& d = tables[static_cast<std::size_t>(t)];
+        if (d.precision < 0) {
             failed = true;  // a table the payload left unused
             return 0;
         }
@@ -248,17 +248,15 @@ public:
         at = s;
         return at;
     }
-    /// A new segment of zeros, written in place.
-    Segment& emplace() {
-        Segment& at = slot();
-        at = Segment{};
-        return at;
-    }
+    /// A new segment of zeros, written in place (a chunk is made of zeros
+    /// and each of its segments handed out once: no second clearing).
+    Segment& emplace() { return slot(); }
 
 private:
     Segment& slot() {
         if (used_ == size_) {
             size_ = std::min<std::size_t>(kMaxChunk, std::size_t{64} << std::min<std::size_t>(chunks_.size(), 6));
+            // Zeros: Segment's member initializers (emplace() relies on them).
             chunks_.push_back(std::make_unique_for_overwrite<Segment[]>(size_));
             used_ = 0;
         }
@@ -477,18 +475,23 @@ public:
         prev_op_ = from_recent_rank ? kAfterRec : kAfterSucc;
     }
 
-    // Enters a segment of own_ (stored in place) into the history.
-    [[gnu::flatten]] void push_seg(const Segment& seg) {
+    // Enters a segment of own_ (stored in place), of leading axis `lead`
+    // and sign mask `neg`, into the history.
+    [[gnu::flatten]] void push_seg(const Segment& seg, int lead, unsigned neg) {
         segs_.push_back(&seg);
         hist_.push_back(kSegTag | static_cast<std::uint32_t>(segs_.size() - 1));
-        note_fields(seg);
+        note_fields(seg, lead, neg);
     }
 
     void note_fields(const Segment& seg) {
-        const int lead = leading_axis(seg.delta, ax());
         unsigned neg = 0;
         for (int i = 0; i < ax(); ++i)
             if (seg.delta[i] < 0) neg |= 1u << i;
+        note_fields(seg, leading_axis(seg.delta, ax()), neg);
+    }
+    // The field contexts after `seg`, whose leading axis and sign mask the
+    // caller knows.
+    void note_fields(const Segment& seg, int lead, unsigned neg) {
         if (ax() == 2) {
             const int oct = kOctantOf[lead * 4 + static_cast<int>(neg)];
             prev_turn_ = (oct - prev_oct_) & 7;
@@ -587,7 +590,7 @@ public:
         recent_.push_front(id);
         succ_[prev_shape_ + 1].use(id);
         prev_shape_ = id;
-        push_seg(seg);
+        push_seg(seg, lead, neg);  // (the lead and signs the totals have: checked above)
         prev_op_ = kAfterFull;
         return true;
     }
@@ -880,12 +883,14 @@ bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
         std::uint64_t s;
         if (!cur.varint(s) || s >= size) return false;
         d.precision = 0;
+        d.mask = 0;
         d.slots.assign(1, Slot{static_cast<std::uint16_t>(s), 1, 0});
         return true;
     }
     std::uint8_t prec;
     if (!cur.u8(prec) || prec < 1 || prec > kMaxPrecision || (std::uint64_t{1} << prec) < used) return false;
     d.precision = prec;
+    d.mask = (1u << prec) - 1;
     d.slots.resize(std::size_t{1} << prec);
     std::uint64_t s = 0, start = 0;
     for (std::uint64_t k = 0; k < used; ++k) {
@@ -896,7 +901,7 @@ bool get_table(Cursor& cur, unsigned size, DecodeTable& d) {
             return false;
         for (std::uint64_t i = 0; i <= f1; ++i)
             d.slots[start + i] = Slot{static_cast<std::uint16_t>(s), static_cast<std::uint16_t>(f1 + 1),
-                                      static_cast<std::uint16_t>(start)};
+                                      static_cast<std::uint16_t>(i)};
         start += f1 + 1;
     }
     return start == (std::uint64_t{1} << prec);
@@ -1317,7 +1322,7 @@ Result<void> read_table(std::string_view payload, Profile p, int axes_in, bool e
         return error(Errc::corrupt, size_at, "bad rANS stream size");
     const std::size_t rans_at = cur.pos() - rans_bytes.size();
     const std::size_t bits_at = cur.pos();
-    DecSide io{&tables, RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
+    DecSide io{std::move(tables), RansDecoder(rans_bytes), BitReader(payload.substr(bits_at))};
     TableCoder<DecSide, kAxes> coder(io, p, axes);
     coder.grid_ = static_cast<std::int64_t>(h.grid);
     if (arcs) coder.arc_method_ = method;

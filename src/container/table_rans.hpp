@@ -25,14 +25,17 @@ struct FreqTable {
     std::vector<std::uint32_t> freq;
 };
 
-/// Decoder entry of one slot: the symbol, its frequency and its first slot.
+/// Decoder entry of one slot: the symbol, its frequency and the slot's
+/// place among the symbol's slots (slot - start(s)), the state's next value
+/// being one multiply and one add; padded to eight bytes (one scaled index).
 struct Slot {
-    std::uint16_t symbol, freq, start;
+    std::uint16_t symbol, freq, offset, unused = 0;
 };
 
 /// The decoding table of a FreqTable (2^precision slots).
 struct DecodeTable {
-    int precision = 0;
+    int precision = -1;  ///< -1: no table (the payload left it unused)
+    std::uint32_t mask = 0;  ///< 2^precision - 1
     std::vector<Slot> slots;
 };
 
@@ -106,13 +109,14 @@ public:
         }
         if (x_[0] < kRansLow || x_[1] < kRansLow) failed = true;
     }
+    /// A symbol of `t` (a table, precision >= 0).
     unsigned get(const DecodeTable& t) {
-        std::uint32_t& x = x_[which_];
-        which_ ^= 1;
-        const std::uint32_t mask = (1u << t.precision) - 1;
-        const std::uint32_t slot = x & mask;
-        const Slot e = t.slots[slot];
-        x = e.freq * (x >> t.precision) + slot - e.start;
+        // The state of this symbol is x_[0]; it moves to x_[1], the other
+        // state to x_[0] for the next symbol.
+        std::uint32_t x = x_[0];
+        const Slot e = t.slots.data()[x & t.mask];
+        x = e.freq * (x >> t.precision) + e.offset;
+        x_[0] = x_[1];
         if (x < kRansLow) {
             if (end_ - p_ >= 2) {
                 x = (x << 16) | p_[0] | (std::uint32_t{p_[1]} << 8);
@@ -122,6 +126,7 @@ public:
                 x = kRansLow;
             }
         }
+        x_[1] = x;
         return e.symbol;
     }
     /// Stream offset of the next word.
@@ -134,8 +139,7 @@ private:
     const unsigned char* p_;
     const unsigned char* end_;
     const unsigned char* begin_;
-    std::uint32_t x_[2] = {kRansLow, kRansLow};
-    unsigned which_ = 0;
+    std::uint32_t x_[2] = {kRansLow, kRansLow};  // x_[0]: the next symbol's
 };
 
 /// Raw bits, low bit first within each byte, written forward.

@@ -5,6 +5,7 @@
 // code. Not installed.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -52,16 +53,46 @@ inline void other_ticks(std::int64_t n, std::int64_t s, std::int64_t f0, At at) 
     }
 }
 
-inline void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain, Step other, Step* o) {
-    if (n <= 16) {  // short runs: the rule a tick at a time costs less than the divisions
-        std::int64_t f = f0;
-        for (std::int64_t t = 0; t < n; ++t) {
-            const bool p = f >= 0;
-            o[t] = p ? plain : other;
-            f += p ? -s : n - s;
-        }
-        return;
-    }
+// Short runs (n <= 16), where the divisions cost more than the run: the
+// ticks of the `other` letters as a mask (bit t: tick t) for every n, s in
+// [1, n) and f0 in [-s, n - s), made at compile time by the rule itself.
+inline constexpr int kShortRun = 16;
+struct ShortRunMasks {
+    std::uint16_t at[kShortRun + 1][kShortRun][kShortRun];  // [n][s][f0 + s]
+};
+inline constexpr ShortRunMasks kShortRunMasks = [] {
+    ShortRunMasks m{};
+    for (int n = 2; n <= kShortRun; ++n)
+        for (int s = 1; s < n; ++s)
+            for (int f0 = -s; f0 < n - s; ++f0) {
+                unsigned bits = 0;
+                for (int t = 0, f = f0; t < n; ++t) {
+                    if (f >= 0) {
+                        f -= s;
+                    } else {
+                        bits |= 1u << t;
+                        f += n - s;
+                    }
+                }
+                m.at[n][s][f0 + s] = static_cast<std::uint16_t>(bits);
+            }
+    return m;
+}();
+// Four steps (16-bit lanes) from four bits of a mask: lane k all ones where
+// bit k is set.
+inline constexpr auto kLanesOfBits = [] {
+    std::array<std::uint64_t, 16> l{};
+    for (unsigned b = 0; b < 16; ++b)
+        for (unsigned k = 0; k < 4; ++k)
+            if ((b >> k) & 1) l[b] |= std::uint64_t{0xFFFF} << (16 * k);
+    return l;
+}();
+
+// The runs above kShortRun: the letter of the fewer ticks written over a
+// fill with the other, one division per run (out of line: its callers
+// inline the short runs).
+[[gnu::noinline]] inline void emit_long_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain,
+                                                   Step other, Step* o) {
     if (2 * s > n) {
         // Mostly `other`: the same rule with the letters' roles swapped
         // (g = -f - 1 follows it with s' = n - s from g0 = -f0 - 1, in its
@@ -72,6 +103,30 @@ inline void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Ste
     }
     fill_steps(o, n, plain);
     other_ticks(n, s, f0, [&](std::int64_t t) { o[t] = other; });
+}
+
+[[gnu::always_inline]] inline void emit_two_letter(std::int64_t n, std::int64_t s, std::int64_t f0, Step plain,
+                                                   Step other, Step* o) {
+    if (n <= kShortRun) {
+        // Four steps a store: `plain` in every lane, flipped to `other` in
+        // the lanes of the mask (the last 1-3 steps by an overlapping store).
+        const unsigned m = kShortRunMasks.at[n][s][f0 + s];
+        const std::uint64_t p4 = std::uint64_t{plain} * 0x0001000100010001ull;
+        const std::uint64_t d4 = std::uint64_t{static_cast<Step>(plain ^ other)} * 0x0001000100010001ull;
+        if (n < 4) {
+            for (std::int64_t t = 0; t < n; ++t) o[t] = ((m >> t) & 1) ? other : plain;
+            return;
+        }
+        auto four = [&](std::int64_t t) {
+            const std::uint64_t v = p4 ^ (kLanesOfBits[(m >> t) & 15] & d4);
+            std::memcpy(o + t, &v, sizeof v);
+        };
+        std::int64_t t = 0;
+        for (; t + 4 <= n; t += 4) four(t);
+        if (t < n) four(n - 4);
+        return;
+    }
+    emit_long_two_letter(n, s, f0, plain, other, o);
 }
 // The fast path of the leading-axis profiles (eval8, grbl, marlin) on two
 // axes into o[0, L): false, and nothing written, when the phase `f0` is
