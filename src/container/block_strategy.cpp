@@ -346,12 +346,37 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     return type != kTable || whole_wins();
 }
 
+// The chains of `block`'s stretches (spread_stretches), the last of each
+// cut short after the first of its segments in `cut` (lines under `p`) that
+// reaches the steps the stretch still wants: a sample of about `limit`
+// steps with its cut, where spread_chains() would take a long chain whole.
+void spread_segments(const Block& block, const Cut& cut, Profile p, std::uint64_t limit, Block& out, Cut& out_cut) {
+    out.axes = block.axes;
+    const bool eight = profile_eight_connected(p);
+    spread_stretches(block, limit, [&](std::size_t i, std::uint64_t left) {
+        const Chain& c = block.chains[i];
+        std::vector<Segment>& segs = out_cut.emplace_back();
+        std::uint64_t n = 0;
+        for (const Segment& seg : cut[i]) {
+            if (n >= left) break;
+            n += static_cast<std::uint64_t>(segment_length(seg.delta, block.axes, eight));
+            segs.push_back(seg);
+        }
+        Chain piece;
+        piece.axes = c.axes;
+        piece.start = c.start;
+        piece.steps.assign(c.steps.begin(), c.steps.begin() + static_cast<std::ptrdiff_t>(n));
+        out.chains.push_back(std::move(piece));
+    });
+}
+
 // Below kFastStepLevel a large block's table block is coded once, by the
 // third pass (window_items_pass(), from the window when it holds items),
 // where the only other coding the first pass would try is zstd of the bytes
 // (tried when the table block comes under 5:1): when the table block of its
-// sample (spread_chains(), no window; the smaller share of matches makes it
-// the larger) is at 5:1 or better. Before, the first pass coded the table
+// sample (no window; the smaller share of matches makes it
+// the larger) is at 5:1 or better (spread_segments(): a random walk's
+// block is one chain). Before, the first pass coded the table
 // block without the window and the third pass again with it (12-26 % of
 // -L 1's instructions on several-MB inputs of many blocks), and the
 // window's coding was the smaller on every block of those inputs
@@ -361,8 +386,10 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
 // must lose to the table block there, as light_cm_may_win() would find).
 bool table_late_pays(const BlockJob& job, const EncoderSettings& s, const Cut& segs, bool plain,
                      const LightSample& made) {
+    // (the frame's first block has no window: the first pass codes it once)
+    const bool frame_start = job.first_chain == 0 && !job.block.continues;
     if (s.thorough || s.timed || s.window_log == 0 || s.arc_method || s.level >= kFastStepLevel || plain ||
-        job.steps < kSmallBlockSteps || job.steps > kMaxBlockSteps || job.bytes.size() > kMaxBlockBytes)
+        frame_start || job.steps < kSmallBlockSteps || job.steps > kMaxBlockSteps || job.bytes.size() > kMaxBlockBytes)
         return false;
     std::size_t table = made.table;
     std::uint64_t steps = made.steps;
@@ -371,7 +398,7 @@ bool table_late_pays(const BlockJob& job, const EncoderSettings& s, const Cut& s
     } else if (table == 0) {
         Block sample;
         Cut cut;
-        spread_chains(job.block, segs, kCmSampleSteps, sample, cut);
+        spread_segments(job.block, segs, s.profile, kCmSampleSteps, sample, cut);
         table = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
         steps = step_count(sample);
     }
