@@ -1212,15 +1212,18 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     std::size_t sample_cm = first ? s.cm_first_sample : 0;
     if (first && job.steps <= kCmSampleSteps) sample_cm = s.cm_first_size;
     LightSample light_sample;      // what light_cm_first() coded of the block's sample
-    // From kLightCmLevel a block of plain steps (random walks:
-    // plain_steps()) is coded by the step model and zstd only (at the
-    // strong levels also mixed, after the context-mixing step model's check
-    // on a sample, which also decides the mixing): the cuts, the segment,
-    // table and record blocks, the light step model and the CM raw block
-    // never came 1/32 under them there, and were three quarters of -L 3's
-    // time (docs/benchmarks.md "Plain steps").
-    const bool plain = !s.timed && s.level >= kLightCmLevel && fits && job.steps <= kMaxBlockSteps &&
-                       plain_steps(block);
+    // A block of plain steps (random walks: plain_steps()) is coded by the
+    // step model and zstd only (at the strong levels also mixed, after the
+    // context-mixing step model's check on a sample, which also decides the
+    // mixing), below kLightCmLevel by zstd only, as the fast levels' large
+    // blocks are not coded by the step model: the cuts, the segment, table
+    // and record blocks, the light step model and the CM raw block never
+    // came 1/32 under them there, and were three quarters of -L 3's time and
+    // two thirds of -L 1's (docs/benchmarks.md "Plain steps").
+    // (below kLightCmLevel judged on the block's first kCmSampleSteps
+    // steps: the whole block's counts cost a tenth of -L 1's time on contours)
+    const bool plain = !s.timed && fits && job.steps <= kMaxBlockSteps &&
+                       plain_steps(s.level >= kLightCmLevel ? block : first_steps(block, kCmSampleSteps));
     const bool cm_first = known_cm || (!declined && !plain && cm_step_model_first(block, job.steps, s, &sample_cm));
     if (cm_first || (!plain && light_cm_first(block, job.steps, s, light_sample))) {
         // A step-model block, coded by the context-mixing model (or the
@@ -1380,7 +1383,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // The step model decodes a few times slower than a table block: below
     // kFastStepLevel only small blocks try it.
     if (fits && job.steps <= kMaxBlockSteps && !segment_model_only &&
-        (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps || plain)) {
+        (s.level >= kFastStepLevel || job.steps < kSmallBlockSteps || (plain && s.level >= kLightCmLevel))) {
         int order = 0;
         const std::string model =
             write_step_model(block, s.thorough ? thorough_step_order(block) : kFastStepOrder, nullptr, &order);
