@@ -753,6 +753,34 @@ private:
     std::unique_ptr<Entry[]> e_;
 };
 
+// The keys of the shapes at the recent ranks the encoder searches (below
+// `search`), counted by their top bits. A segment coded in full is first
+// looked for among those ranks, and at the fast levels that search is
+// almost always in vain (glyphs-big.fc at -L 1: 2 % found): an item whose
+// key has no count there is not among them, without the search.
+class SearchedKeys {
+public:
+    explicit SearchedKeys(std::size_t search)
+        : search_(search), bits_(std::clamp(static_cast<int>(std::bit_width(16 * search)), 8, 16)),
+          count_(std::size_t{1} << bits_, 0) {}
+    bool may_hold(std::uint64_t key) const { return count_[slot(key)] != 0; }
+    /// Before `recent` takes a shape at its front (push_front): the shape at
+    /// rank search - 1 leaves the searched ranks.
+    void before_push(const RecentRing& recent, const std::vector<std::uint64_t>& shape_key) {
+        if (search_ > 0 && recent.size() >= search_) --count_[slot(shape_key[recent.at(search_ - 1)])];
+    }
+    /// After it: the shape of key `key` at rank 0.
+    void after_push(std::uint64_t key) {
+        if (search_ > 0) ++count_[slot(key)];
+    }
+
+private:
+    std::size_t slot(std::uint64_t key) const { return static_cast<std::size_t>(key >> (64 - bits_)); }
+    std::size_t search_;
+    int bits_;
+    std::vector<std::uint16_t> count_;  // at most kRecent shapes searched
+};
+
 // Segment equality as operator== (every total and phase), without its two
 // memcmp calls.
 inline bool same_segment(const Segment& a, const Segment& b) {
@@ -1080,9 +1108,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         coder.segs_.reserve(own_segs);
         coder.hist_.reserve(n);
     }
-    io.syms.reserve(n - first);
+    // A few symbols an item (a segment in full: its operation, lead, minor
+    // totals and phases): room for them, not grown (and copied) on the way.
+    io.syms.reserve((n - first) * static_cast<std::size_t>(2 + axes));
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
+    shape_key.reserve(own_segs);
+    coder.shape_.reserve(own_segs);
+    coder.succ_.reserve(own_segs + 1);
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
         return shape_key[id] == keys[item] && same_segment(*coder.segs_[coder.shape_[id]], *cs[items[item] & kIndexMask]);
     };
@@ -1098,6 +1131,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     const std::size_t min_match = static_cast<std::size_t>(std::max(3, effort.min_match));
     const std::size_t min_rep = static_cast<std::size_t>(std::max(1, effort.min_rep_match));
     const std::size_t search = static_cast<std::size_t>(std::clamp(effort.recent_search, 0, static_cast<int>(kRecent)));
+    SearchedKeys searched(search);
 
     if (window) {
         // The window's entries in order, by the hashes kept with their
@@ -1172,11 +1206,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             std::uint32_t r = 0;
             while (r < sl.size && !shape_is(sl.id[r], i)) ++r;
             if (r < sl.size) {
+                const std::uint32_t id = sl.id[r];
                 coder.code_op(kOpSucc + r);
-                coder.take_shape(sl.id[r], false, 0);
+                searched.before_push(coder.recent_, shape_key);
+                coder.take_shape(id, false, 0);
+                searched.after_push(shape_key[id]);
             } else {
-                std::size_t q = 0;
                 const std::size_t lim = std::min(search, coder.recent_.size());
+                std::size_t q = searched.may_hold(keys[i]) ? 0 : lim;
                 while (q < lim && !shape_is(coder.recent_.at(q), i)) ++q;
                 if (q < lim) {
                     int nb;
@@ -1201,8 +1238,10 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                         op = kOpFull + (dir != coder.prev_dir_);
                     }
                     coder.code_op(op);
+                    searched.before_push(coder.recent_, shape_key);
                     coder.code_full(op, &want);
                     shape_key.push_back(keys[i]);
+                    searched.after_push(keys[i]);
                 }
             }
         }
