@@ -1297,10 +1297,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             if (!arcs) count.resize(alphabet(t, false));
             put_table(out, count, enc[static_cast<std::size_t>(t)]);
         }
-    RansEncoder rans;
-    rans.reserve(io.syms.size());
-    for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
-    const std::string stream = rans.finish();
+    const std::string stream = rans_encode(io.syms, enc);
     const std::string extra_bits = io.bits.finish();
     out.reserve(out.size() + 10 + stream.size() + extra_bits.size());
     put_varint(out, stream.size());
