@@ -793,14 +793,14 @@ inline bool same_segment(const Segment& a, const Segment& b) {
 }
 
 // Normalized frequencies of `count` for precision `prec` (every used symbol
-// at least 1, summing to 2^prec).
-std::vector<std::uint32_t> normalize(const std::vector<std::uint32_t>& count, std::uint64_t total, int prec) {
+// at least 1, summing to 2^prec) into `f`, at the used symbols `used` (in
+// increasing order; the others' entries are left as they are).
+void normalize(const std::vector<std::uint32_t>& count, const std::vector<std::uint16_t>& used, std::uint64_t total,
+               int prec, std::vector<std::uint32_t>& f) {
     const std::uint32_t want = 1u << prec;
-    std::vector<std::uint32_t> f(count.size(), 0);
     std::uint32_t sum = 0;
     std::size_t big = 0;
-    for (std::size_t s = 0; s < count.size(); ++s) {
-        if (count[s] == 0) continue;
+    for (const std::size_t s : used) {
         f[s] = std::max<std::uint32_t>(1, static_cast<std::uint32_t>((std::uint64_t{count[s]} * want) / total));
         sum += f[s];
         if (count[s] > count[big] || count[big] == 0) big = s;
@@ -812,14 +812,13 @@ std::vector<std::uint32_t> normalize(const std::vector<std::uint32_t>& count, st
             sum = want;
         } else {
             std::size_t best = count.size();
-            for (std::size_t s = 0; s < count.size(); ++s)
+            for (const std::size_t s : used)
                 if (f[s] > 1 && (best == count.size() || f[s] > f[best])) best = s;
             const std::uint32_t take = std::min(sum - want, f[best] - 1);
             f[best] -= take;
             sum -= take;
         }
     }
-    return f;
 }
 
 std::size_t varint_size(std::uint64_t v) {
@@ -835,35 +834,35 @@ std::size_t varint_size(std::uint64_t v) {
 // coded bits), appended to `out`; fills the encode table.
 void put_table(std::string& out, const std::vector<std::uint32_t>& count, EncodeTable& enc) {
     std::uint64_t total = 0;
-    unsigned used = 0;
-    for (auto c : count) {
-        total += c;
-        used += c != 0;
-    }
+    // The used symbols, in increasing order: the loops below go over them
+    // only (a table uses a few of its 130 or more symbols).
+    std::vector<std::uint16_t> syms;
+    for (std::size_t s = 0; s < count.size(); ++s)
+        if (count[s] != 0) {
+            total += count[s];
+            syms.push_back(static_cast<std::uint16_t>(s));
+        }
+    const auto used = static_cast<unsigned>(syms.size());
     enc.freq.assign(count.size(), 0);
     enc.start.assign(count.size(), 0);
     put_varint(out, used - 1);
     if (used == 1) {
-        for (std::size_t s = 0; s < count.size(); ++s)
-            if (count[s] != 0) {
-                put_varint(out, s);
-                enc.freq[s] = 1;
-            }
+        put_varint(out, syms[0]);
+        enc.freq[syms[0]] = 1;
         enc.precision = 0;
         return;
     }
     int best_p = 0;
     double best_cost = 0;
-    std::vector<std::uint32_t> best_f;
+    std::vector<std::uint32_t> f(count.size()), best_f;
     for (int prec = std::bit_width(used - 1); prec <= kMaxPrecision; ++prec) {
-        const auto f = normalize(count, total, prec);
+        normalize(count, syms, total, prec, f);
         double bits = 0;
         std::size_t header = 0;
-        for (std::size_t s = 0; s < count.size(); ++s)
-            if (count[s] != 0) {
-                bits += count[s] * (prec - std::log2(static_cast<double>(f[s])));
-                header += varint_size(f[s] - 1);
-            }
+        for (const std::size_t s : syms) {
+            bits += count[s] * (prec - std::log2(static_cast<double>(f[s])));
+            header += varint_size(f[s] - 1);
+        }
         const double cost = bits / 8 + static_cast<double>(header);
         if (best_f.empty() || cost < best_cost) {
             best_cost = cost;
@@ -875,8 +874,7 @@ void put_table(std::string& out, const std::vector<std::uint32_t>& count, Encode
     std::uint32_t start = 0;
     std::size_t prev = 0;
     bool first = true;
-    for (std::size_t s = 0; s < count.size(); ++s) {
-        if (count[s] == 0) continue;
+    for (const std::size_t s : syms) {
         put_varint(out, first ? s : s - prev - 1);
         put_varint(out, best_f[s] - 1);
         first = false;
