@@ -1120,8 +1120,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
 
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
     std::vector<std::uint32_t> table(std::size_t{1} << hash_bits, 0);
+    // The block's own entries' hashes when `mine` holds them (window_keys()
+    // made them for the block's contribution: the same three keys), else
+    // computed.
+    const std::uint64_t* own_hashes = mine && mine->hashes.size() + 2 == n - first ? mine->hashes.data() : nullptr;
     auto hash3 = [&](std::size_t i) {
-        return static_cast<std::size_t>(hash_of_three(keys[i], keys[i + 1], keys[i + 2]) >> (64 - hash_bits));
+        const std::uint64_t v =
+            own_hashes && i >= first ? own_hashes[i - first] : hash_of_three(keys[i], keys[i + 1], keys[i + 2]);
+        return static_cast<std::size_t>(v >> (64 - hash_bits));
     };
     auto insert = [&](std::size_t i) {
         if (i + 3 <= n) table[hash3(i)] = static_cast<std::uint32_t>(i + 1);
