@@ -753,6 +753,34 @@ private:
     std::unique_ptr<Entry[]> e_;
 };
 
+// The keys of the shapes at the recent ranks the encoder searches (below
+// `search`), counted by their top bits. A segment coded in full is first
+// looked for among those ranks, and at the fast levels that search is
+// almost always in vain (glyphs-big.fc at -L 1: 2 % found): an item whose
+// key has no count there is not among them, without the search.
+class SearchedKeys {
+public:
+    explicit SearchedKeys(std::size_t search)
+        : search_(search), bits_(std::clamp(static_cast<int>(std::bit_width(16 * search)), 8, 16)),
+          count_(std::size_t{1} << bits_, 0) {}
+    bool may_hold(std::uint64_t key) const { return count_[slot(key)] != 0; }
+    /// Before `recent` takes a shape at its front (push_front): the shape at
+    /// rank search - 1 leaves the searched ranks.
+    void before_push(const RecentRing& recent, const std::vector<std::uint64_t>& shape_key) {
+        if (search_ > 0 && recent.size() >= search_) --count_[slot(shape_key[recent.at(search_ - 1)])];
+    }
+    /// After it: the shape of key `key` at rank 0.
+    void after_push(std::uint64_t key) {
+        if (search_ > 0) ++count_[slot(key)];
+    }
+
+private:
+    std::size_t slot(std::uint64_t key) const { return static_cast<std::size_t>(key >> (64 - bits_)); }
+    std::size_t search_;
+    int bits_;
+    std::vector<std::uint16_t> count_;  // at most kRecent shapes searched
+};
+
 // Segment equality as operator== (every total and phase), without its two
 // memcmp calls.
 inline bool same_segment(const Segment& a, const Segment& b) {
@@ -765,14 +793,14 @@ inline bool same_segment(const Segment& a, const Segment& b) {
 }
 
 // Normalized frequencies of `count` for precision `prec` (every used symbol
-// at least 1, summing to 2^prec).
-std::vector<std::uint32_t> normalize(const std::vector<std::uint32_t>& count, std::uint64_t total, int prec) {
+// at least 1, summing to 2^prec) into `f`, at the used symbols `used` (in
+// increasing order; the others' entries are left as they are).
+void normalize(const std::vector<std::uint32_t>& count, const std::vector<std::uint16_t>& used, std::uint64_t total,
+               int prec, std::vector<std::uint32_t>& f) {
     const std::uint32_t want = 1u << prec;
-    std::vector<std::uint32_t> f(count.size(), 0);
     std::uint32_t sum = 0;
     std::size_t big = 0;
-    for (std::size_t s = 0; s < count.size(); ++s) {
-        if (count[s] == 0) continue;
+    for (const std::size_t s : used) {
         f[s] = std::max<std::uint32_t>(1, static_cast<std::uint32_t>((std::uint64_t{count[s]} * want) / total));
         sum += f[s];
         if (count[s] > count[big] || count[big] == 0) big = s;
@@ -784,14 +812,13 @@ std::vector<std::uint32_t> normalize(const std::vector<std::uint32_t>& count, st
             sum = want;
         } else {
             std::size_t best = count.size();
-            for (std::size_t s = 0; s < count.size(); ++s)
+            for (const std::size_t s : used)
                 if (f[s] > 1 && (best == count.size() || f[s] > f[best])) best = s;
             const std::uint32_t take = std::min(sum - want, f[best] - 1);
             f[best] -= take;
             sum -= take;
         }
     }
-    return f;
 }
 
 std::size_t varint_size(std::uint64_t v) {
@@ -807,35 +834,35 @@ std::size_t varint_size(std::uint64_t v) {
 // coded bits), appended to `out`; fills the encode table.
 void put_table(std::string& out, const std::vector<std::uint32_t>& count, EncodeTable& enc) {
     std::uint64_t total = 0;
-    unsigned used = 0;
-    for (auto c : count) {
-        total += c;
-        used += c != 0;
-    }
+    // The used symbols, in increasing order: the loops below go over them
+    // only (a table uses a few of its 130 or more symbols).
+    std::vector<std::uint16_t> syms;
+    for (std::size_t s = 0; s < count.size(); ++s)
+        if (count[s] != 0) {
+            total += count[s];
+            syms.push_back(static_cast<std::uint16_t>(s));
+        }
+    const auto used = static_cast<unsigned>(syms.size());
     enc.freq.assign(count.size(), 0);
     enc.start.assign(count.size(), 0);
     put_varint(out, used - 1);
     if (used == 1) {
-        for (std::size_t s = 0; s < count.size(); ++s)
-            if (count[s] != 0) {
-                put_varint(out, s);
-                enc.freq[s] = 1;
-            }
+        put_varint(out, syms[0]);
+        enc.freq[syms[0]] = 1;
         enc.precision = 0;
         return;
     }
     int best_p = 0;
     double best_cost = 0;
-    std::vector<std::uint32_t> best_f;
+    std::vector<std::uint32_t> f(count.size()), best_f;
     for (int prec = std::bit_width(used - 1); prec <= kMaxPrecision; ++prec) {
-        const auto f = normalize(count, total, prec);
+        normalize(count, syms, total, prec, f);
         double bits = 0;
         std::size_t header = 0;
-        for (std::size_t s = 0; s < count.size(); ++s)
-            if (count[s] != 0) {
-                bits += count[s] * (prec - std::log2(static_cast<double>(f[s])));
-                header += varint_size(f[s] - 1);
-            }
+        for (const std::size_t s : syms) {
+            bits += count[s] * (prec - std::log2(static_cast<double>(f[s])));
+            header += varint_size(f[s] - 1);
+        }
         const double cost = bits / 8 + static_cast<double>(header);
         if (best_f.empty() || cost < best_cost) {
             best_cost = cost;
@@ -847,8 +874,7 @@ void put_table(std::string& out, const std::vector<std::uint32_t>& count, Encode
     std::uint32_t start = 0;
     std::size_t prev = 0;
     bool first = true;
-    for (std::size_t s = 0; s < count.size(); ++s) {
-        if (count[s] == 0) continue;
+    for (const std::size_t s : syms) {
         put_varint(out, first ? s : s - prev - 1);
         put_varint(out, best_f[s] - 1);
         first = false;
@@ -1080,17 +1106,28 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         coder.segs_.reserve(own_segs);
         coder.hist_.reserve(n);
     }
-    io.syms.reserve(n - first);
+    // A few symbols an item (a segment in full: its operation, lead, minor
+    // totals and phases): room for them, not grown (and copied) on the way.
+    io.syms.reserve((n - first) * static_cast<std::size_t>(2 + axes));
     // Shape keys by id, for the encoder's searches.
     std::vector<std::uint64_t> shape_key;
+    shape_key.reserve(own_segs);
+    coder.shape_.reserve(own_segs);
+    coder.succ_.reserve(own_segs + 1);
     auto shape_is = [&](std::uint32_t id, std::size_t item) {
         return shape_key[id] == keys[item] && same_segment(*coder.segs_[coder.shape_[id]], *cs[items[item] & kIndexMask]);
     };
 
     const int hash_bits = std::clamp(static_cast<int>(std::bit_width(n)) + 1, 10, 22);
     std::vector<std::uint32_t> table(std::size_t{1} << hash_bits, 0);
+    // The block's own entries' hashes when `mine` holds them (window_keys()
+    // made them for the block's contribution: the same three keys), else
+    // computed.
+    const std::uint64_t* own_hashes = mine && mine->hashes.size() + 2 == n - first ? mine->hashes.data() : nullptr;
     auto hash3 = [&](std::size_t i) {
-        return static_cast<std::size_t>(hash_of_three(keys[i], keys[i + 1], keys[i + 2]) >> (64 - hash_bits));
+        const std::uint64_t v =
+            own_hashes && i >= first ? own_hashes[i - first] : hash_of_three(keys[i], keys[i + 1], keys[i + 2]);
+        return static_cast<std::size_t>(v >> (64 - hash_bits));
     };
     auto insert = [&](std::size_t i) {
         if (i + 3 <= n) table[hash3(i)] = static_cast<std::uint32_t>(i + 1);
@@ -1098,6 +1135,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     const std::size_t min_match = static_cast<std::size_t>(std::max(3, effort.min_match));
     const std::size_t min_rep = static_cast<std::size_t>(std::max(1, effort.min_rep_match));
     const std::size_t search = static_cast<std::size_t>(std::clamp(effort.recent_search, 0, static_cast<int>(kRecent)));
+    SearchedKeys searched(search);
 
     if (window) {
         // The window's entries in order, by the hashes kept with their
@@ -1172,11 +1210,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             std::uint32_t r = 0;
             while (r < sl.size && !shape_is(sl.id[r], i)) ++r;
             if (r < sl.size) {
+                const std::uint32_t id = sl.id[r];
                 coder.code_op(kOpSucc + r);
-                coder.take_shape(sl.id[r], false, 0);
+                searched.before_push(coder.recent_, shape_key);
+                coder.take_shape(id, false, 0);
+                searched.after_push(shape_key[id]);
             } else {
-                std::size_t q = 0;
                 const std::size_t lim = std::min(search, coder.recent_.size());
+                std::size_t q = searched.may_hold(keys[i]) ? 0 : lim;
                 while (q < lim && !shape_is(coder.recent_.at(q), i)) ++q;
                 if (q < lim) {
                     int nb;
@@ -1201,8 +1242,10 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
                         op = kOpFull + (dir != coder.prev_dir_);
                     }
                     coder.code_op(op);
+                    searched.before_push(coder.recent_, shape_key);
                     coder.code_full(op, &want);
                     shape_key.push_back(keys[i]);
+                    searched.after_push(keys[i]);
                 }
             }
         }
@@ -1258,10 +1301,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             if (!arcs) count.resize(alphabet(t, false));
             put_table(out, count, enc[static_cast<std::size_t>(t)]);
         }
-    RansEncoder rans;
-    rans.reserve(io.syms.size());
-    for (const auto& [t, s] : io.syms) rans.put(enc[t], s);
-    const std::string stream = rans.finish();
+    const std::string stream = rans_encode(io.syms, enc);
     const std::string extra_bits = io.bits.finish();
     out.reserve(out.size() + 10 + stream.size() + extra_bits.size());
     put_varint(out, stream.size());

@@ -5,9 +5,11 @@
 // at most one 16-bit read. Internal to src/container.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,51 +47,38 @@ struct EncodeTable {
     std::vector<std::uint32_t> freq, start;
 };
 
-/// rANS encoder over a sequence given forward: symbols are recorded, then
-/// encoded backward on finish() (symbol i uses state i & 1).
-class RansEncoder {
-public:
-    void put(const EncodeTable& t, unsigned sym) {
-        ops_.push_back({&t, sym});
-    }
-    /// Room for `n` symbols.
-    void reserve(std::size_t n) { ops_.reserve(n); }
-    /// The stream: two u32 states (little-endian), then 16-bit words
-    /// (little-endian) in the order the decoder reads them.
-    std::string finish() {
-        std::uint64_t x[2] = {kRansLow, kRansLow};
-        std::vector<std::uint16_t> words;
-        words.reserve(ops_.size());  // at most one word per symbol
-        for (std::size_t i = ops_.size(); i-- > 0;) {
-            const EncodeTable& t = *ops_[i].table;
-            const std::uint64_t f = t.freq[ops_[i].sym];
-            std::uint64_t& s = x[i & 1];
-            const std::uint64_t xmax = ((std::uint64_t{kRansLow} >> t.precision) << 16) * f;
-            if (s >= xmax) {
-                words.push_back(static_cast<std::uint16_t>(s & 0xFFFF));
-                s >>= 16;
-            }
-            s = ((s / f) << t.precision) + (s % f) + t.start[ops_[i].sym];
+/// The rANS stream of a sequence of symbols given forward, each a (table,
+/// symbol) pair whose table indexes `tables`: encoded backward (symbol i by
+/// state i & 1) into two u32 states (little-endian), then 16-bit words
+/// (little-endian) in the order the decoder reads them. The words are
+/// written from the end of a buffer of one word per symbol (at most one
+/// each), which then reads forward in the decoder's order.
+template <class Sym, std::size_t N>
+std::string rans_encode(const std::vector<Sym>& syms, const std::array<EncodeTable, N>& tables) {
+    // A state stays below 2^32: renormalized below ((2^16 >> P) << 16) f,
+    // it becomes at most (x / f) 2^P + f - 1 < 2^32.
+    std::uint32_t x[2] = {kRansLow, kRansLow};
+    const auto words = std::make_unique_for_overwrite<std::uint16_t[]>(syms.size());
+    std::uint16_t* const end = words.get() + syms.size();
+    std::uint16_t* w = end;
+    for (std::size_t i = syms.size(); i-- > 0;) {
+        const EncodeTable& t = tables[syms[i].first];
+        const unsigned sym = syms[i].second;
+        const std::uint32_t f = t.freq.data()[sym];
+        std::uint32_t& s = x[i & 1];
+        if (std::uint64_t{s} >= ((std::uint64_t{kRansLow} >> t.precision) << 16) * f) {
+            *--w = static_cast<std::uint16_t>(s & 0xFFFF);
+            s >>= 16;
         }
-        std::string out;
-        out.reserve(8 + 2 * words.size());
-        for (int k = 0; k < 2; ++k)
-            for (int b = 0; b < 4; ++b) out.push_back(static_cast<char>((x[k] >> (8 * b)) & 0xFF));
-        for (std::size_t i = words.size(); i-- > 0;) {
-            out.push_back(static_cast<char>(words[i] & 0xFF));
-            out.push_back(static_cast<char>(words[i] >> 8));
-        }
-        ops_.clear();
-        return out;
+        s = ((s / f) << t.precision) + s % f + t.start.data()[sym];
     }
-
-private:
-    struct Op {
-        const EncodeTable* table;
-        unsigned sym;
-    };
-    std::vector<Op> ops_;
-};
+    const auto nwords = static_cast<std::size_t>(end - w);
+    std::string out(8 + 2 * nwords, '\0');
+    // Little-endian hosts only (as the decoder).
+    std::memcpy(out.data(), x, 8);
+    if (nwords > 0) std::memcpy(out.data() + 8, w, 2 * nwords);
+    return out;
+}
 
 /// rANS decoder. Reading past the stream sets `failed` (words read as 0).
 class RansDecoder {
