@@ -64,9 +64,8 @@ std::int64_t PatentRecognizer::read(std::span<const Step> steps) {
     return static_cast<std::int64_t>(n);
 }
 
-// Most steps read ahead are never checked (longest_valid() rejects most
-// longer candidates by the last contradicting pair): the per-step terms are
-// made here, for the steps read since, not by extend().
+// The per-step terms of the steps read since the last call, in one loop
+// (read() and extend() store the steps only).
 void PatentRecognizer::sync() const {
     for (std::size_t k = xs_before_.size(); k < ystep_.size(); ++k) {
         const std::int64_t j = static_cast<std::int64_t>(k) - synced_xs_;
