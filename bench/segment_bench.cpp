@@ -1,7 +1,11 @@
 // Reverse interpolation: steps segmented per second, greedy and optimal, on a
-// random-slope polyline (long exact segments) and on a random walk (short ones).
+// random-slope polyline (long exact segments), on a random walk (short ones)
+// and on digital circles (short segments in long runs of one quadrant, as
+// traced glyph contours have: the patent profile reads a quadrant's run
+// ahead and checks its candidates from the longest down).
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -56,10 +60,48 @@ std::vector<Step> random_walk(Profile p) {
     return steps;
 }
 
-void run(benchmark::State& state, bool walk) {
+// Circles of radius 20..400 around the origin, each traced from (r, 0)
+// counter-clockwise by the step (one axis, or on 8-connected profiles both)
+// that keeps x^2 + y^2 nearest r^2.
+std::vector<Step> circles(Profile p) {
+    std::mt19937_64 rng(3);
+    const bool eight = profile_eight_connected(p);
+    std::vector<Step> steps;
+    while (steps.size() < kSteps) {
+        const std::int64_t r = std::uniform_int_distribution<std::int64_t>(20, 400)(rng);
+        std::int64_t x = r, y = 0;
+        for (int quadrant = 0; quadrant < 4; ++quadrant) {
+            // the quadrant's two axis moves, turned a quarter each time
+            static constexpr int kDx[4] = {-1, -1, 1, 1}, kDy[4] = {1, -1, -1, 1};
+            const int dx = kDx[quadrant], dy = kDy[quadrant];
+            const std::int64_t ex = quadrant % 2 == 0 ? 0 : (quadrant == 1 ? -r : r);
+            const std::int64_t ey = quadrant % 2 == 0 ? (quadrant == 0 ? r : -r) : 0;
+            while (x != ex || y != ey) {
+                auto err = [&](std::int64_t a, std::int64_t b) { return std::llabs(a * a + b * b - r * r); };
+                int mx = x != ex ? dx : 0, my = y != ey ? dy : 0;
+                if (mx != 0 && my != 0) {
+                    const std::int64_t ex_only = err(x + mx, y), ey_only = err(x, y + my), both = err(x + mx, y + my);
+                    if (eight && both <= ex_only && both <= ey_only) {
+                    } else if (ex_only <= ey_only) {
+                        my = 0;
+                    } else {
+                        mx = 0;
+                    }
+                }
+                x += mx;
+                y += my;
+                steps.push_back(make_step2(mx, my));
+            }
+        }
+    }
+    steps.resize(kSteps);
+    return steps;
+}
+
+void run(benchmark::State& state, int input) {
     const auto profile = static_cast<Profile>(state.range(0));
     const auto kind = static_cast<SegmenterKind>(state.range(1));
-    const std::vector<Step> steps = walk ? random_walk(profile) : polyline(profile);
+    const std::vector<Step> steps = input == 1 ? random_walk(profile) : input == 2 ? circles(profile) : polyline(profile);
     std::vector<Segment> out;
     std::int64_t done = 0;
     for (auto _ : state) {
@@ -76,13 +118,17 @@ void run(benchmark::State& state, bool walk) {
     state.SetLabel(std::string(profile_name(profile)) + " " + std::string(segmenter_name(kind)));
 }
 
-void BM_SegmentPolyline(benchmark::State& state) { run(state, false); }
-void BM_SegmentRandomWalk(benchmark::State& state) { run(state, true); }
+void BM_SegmentPolyline(benchmark::State& state) { run(state, 0); }
+void BM_SegmentRandomWalk(benchmark::State& state) { run(state, 1); }
+void BM_SegmentCircles(benchmark::State& state) { run(state, 2); }
 
 BENCHMARK(BM_SegmentPolyline)
     ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SegmentRandomWalk)
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SegmentCircles)
     ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
