@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../src/container/memory_io.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
@@ -205,6 +206,31 @@ TEST(TimedFormat, GeneratedStreamsCompressByteExactly) {
         auto backb = decompress(*zb);
         ASSERT_TRUE(backb.ok());
         EXPECT_TRUE(*backb == in) << name;
+    }
+}
+
+// A timed log's blocks hold kDefaultTimedBlockTicks ticks unless the caller
+// names a block size: a log of more than 2^20 ticks is one block.
+TEST(TimedFormat, DefaultBlocksOfATimedLogHoldFourTimesTheSteps) {
+    const std::string in = controller_log(5, 2, 12000);
+    ASSERT_GT(in.size(), kDefaultBlockSteps + 1000);
+    ASSERT_LT(in.size(), kDefaultTimedBlockTicks);
+    CompressOptions opt;
+    opt.format = InputFormat::timed;
+    opt.level = 1;
+    auto z = compress(in, opt);
+    ASSERT_TRUE(z.ok()) << z.error().message;
+    opt.block_steps = kDefaultBlockSteps;
+    auto zb = compress(in, opt);
+    ASSERT_TRUE(zb.ok()) << zb.error().message;
+    auto whole = inspect_stream(stz::memory_reader(*z)), named = inspect_stream(stz::memory_reader(*zb));
+    ASSERT_TRUE(whole.ok() && named.ok());
+    EXPECT_EQ(whole->blocks, 1u);
+    EXPECT_EQ(named->blocks, 2u);
+    for (const std::string* frame : {&*z, &*zb}) {
+        auto back = decompress(*frame);
+        ASSERT_TRUE(back.ok()) << back.error().message;
+        EXPECT_TRUE(*back == in);
     }
 }
 

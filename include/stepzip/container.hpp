@@ -58,7 +58,9 @@ struct CompressOptions {
     int level = 3;                           ///< 1..19, also the zstd level
     unsigned threads = 1;                    ///< 0: all cores; output does not depend on it
     std::optional<InputFormat> format;       ///< nullopt: detect from the first bytes
-    std::size_t block_steps = kDefaultBlockSteps;  ///< steps per block (at most kMaxBlockSteps)
+    /// Steps per block (1..kMaxBlockSteps); nullopt: kDefaultBlockSteps,
+    /// or kDefaultTimedBlockTicks ticks for a timed log.
+    std::optional<std::size_t> block_steps;
     std::string source = "<input>";          ///< input name for error messages
     /// Carry a block as zstd of its bytes when that is smaller than its
     /// segments (docs/FORMAT.md "Raw blocks"); false forces chain blocks

@@ -104,7 +104,7 @@ int cmd_compress(const std::vector<std::string>& args) {
         ("threads,T", po::value(&threads), "compress blocks on N threads (0 = all cores; default 1); "
                                            "output does not depend on N")
         ("format", po::value(&format), "freeman|points|steps|timed (default: detected; timed: a steps log read with time as axis 0)")
-        ("block-size", po::value(&block_steps), "steps per block (default 1048576)")
+        ("block-size", po::value(&block_steps), "steps per block (default 1048576; timed logs: 4194304 ticks)")
         ("arc-method", po::value(&arc_arg),
          "two-axis chains: also code circular arcs drawn by M (evaluation, accelerated, dda, "
          "prediction, recursion; as `interpolate --arc-method`) where that is smaller; default: "
@@ -144,7 +144,7 @@ int cmd_compress(const std::vector<std::string>& args) {
         return usage_error("compress: --block-size must be 1..16777216");
     opt.level = level;
     opt.threads = threads;
-    opt.block_steps = block_steps;
+    if (vm.count("block-size")) opt.block_steps = block_steps;
 
     const TargetFn target = [](const std::string& input) -> Result<std::string> {
         return input + ".stz";

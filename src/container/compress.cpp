@@ -85,7 +85,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
                                   const ProgressFn& progress) {
     if (opt.level < 1 || opt.level > 19)
         return make_error(Errc::invalid_argument, "level must be 1..19, got " + std::to_string(opt.level));
-    if (opt.block_steps == 0 || opt.block_steps > kMaxBlockSteps)
+    if (opt.block_steps && (*opt.block_steps == 0 || *opt.block_steps > kMaxBlockSteps))
         return make_error(Errc::invalid_argument, "block size must be 1..2^24 steps");
     unsigned threads = opt.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : opt.threads;
     threads = std::min(threads, 256u);
@@ -308,7 +308,7 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         }
         if (!reader) {
             s.timed = *format == InputFormat::timed;
-            reader.emplace(*format, s.source, opt.block_steps);
+            reader.emplace(*format, s.source, opt.block_steps.value_or(s.timed ? kDefaultTimedBlockTicks : kDefaultBlockSteps));
             render = std::make_unique<BlockWriter>(*format);
         }
         pending.append(data);
