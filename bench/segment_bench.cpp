@@ -66,27 +66,22 @@ std::vector<Step> random_walk(Profile p) {
 std::vector<Step> circles(Profile p) {
     std::mt19937_64 rng(3);
     const bool eight = profile_eight_connected(p);
+    // per quadrant: its two axis moves and where it ends, in radii
+    static constexpr int kDx[4] = {-1, -1, 1, 1}, kDy[4] = {1, -1, -1, 1};
+    static constexpr int kEndX[4] = {0, -1, 0, 1}, kEndY[4] = {1, 0, -1, 0};
     std::vector<Step> steps;
     while (steps.size() < kSteps) {
         const std::int64_t r = std::uniform_int_distribution<std::int64_t>(20, 400)(rng);
+        auto err = [r](std::int64_t a, std::int64_t b) { return std::llabs(a * a + b * b - r * r); };
         std::int64_t x = r, y = 0;
-        for (int quadrant = 0; quadrant < 4; ++quadrant) {
-            // the quadrant's two axis moves, turned a quarter each time
-            static constexpr int kDx[4] = {-1, -1, 1, 1}, kDy[4] = {1, -1, -1, 1};
-            const int dx = kDx[quadrant], dy = kDy[quadrant];
-            const std::int64_t ex = quadrant % 2 == 0 ? 0 : (quadrant == 1 ? -r : r);
-            const std::int64_t ey = quadrant % 2 == 0 ? (quadrant == 0 ? r : -r) : 0;
+        for (int q = 0; q < 4; ++q) {
+            const std::int64_t ex = kEndX[q] * r, ey = kEndY[q] * r;
             while (x != ex || y != ey) {
-                auto err = [&](std::int64_t a, std::int64_t b) { return std::llabs(a * a + b * b - r * r); };
-                int mx = x != ex ? dx : 0, my = y != ey ? dy : 0;
+                int mx = x != ex ? kDx[q] : 0, my = y != ey ? kDy[q] : 0;
                 if (mx != 0 && my != 0) {
-                    const std::int64_t ex_only = err(x + mx, y), ey_only = err(x, y + my), both = err(x + mx, y + my);
-                    if (eight && both <= ex_only && both <= ey_only) {
-                    } else if (ex_only <= ey_only) {
-                        my = 0;
-                    } else {
-                        mx = 0;
-                    }
+                    const std::int64_t e_x = err(x + mx, y), e_y = err(x, y + my), e_xy = err(x + mx, y + my);
+                    const bool diagonal = eight && e_xy <= e_x && e_xy <= e_y;
+                    if (!diagonal) (e_x <= e_y ? my : mx) = 0;
                 }
                 x += mx;
                 y += my;

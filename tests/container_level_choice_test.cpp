@@ -25,9 +25,11 @@ struct Coded {
     FrameInfo info;
 };
 
-Coded code(const std::string& input, int level) {
+// `block_steps`: nullopt for the default.
+Coded code(const std::string& input, int level, std::optional<std::size_t> block_steps = {}) {
     CompressOptions opt;
     opt.level = level;
+    opt.block_steps = block_steps;
     std::string z = test::compress_proved(input, opt);
     if (z.empty()) return {};
     auto info = inspect_stream(stz::memory_reader(z));
@@ -93,32 +95,20 @@ TEST(LevelChoice, ManyBlocksRoundTripAndDecodeTheSameAcrossThreads) {
     }
 }
 
-Coded code_in_blocks(const std::string& input, int level, std::size_t block_steps) {
-    CompressOptions opt;
-    opt.level = level;
-    opt.block_steps = block_steps;
-    Coded c;
-    c.frame = test::compress_proved(input, opt);
-    auto info = inspect_stream(stz::memory_reader(c.frame));
-    EXPECT_TRUE(info.ok());
-    if (info.ok()) c.info = *info;
-    return c;
-}
-
 TEST(LevelChoice, Level1TableBlocksFindTheWindowAndWeakBlocksStayZstds) {
     // Below level 3 a large block's table block is coded once, after the
     // blocks before it are known (block_strategy.cpp, table_late_pays()):
     // the second copy of a glyph file, in later blocks of 2^17 steps, is
     // found in the window.
     const std::string glyphs = corpus("glyphs/dejavu-4.fc");  // 301 042 steps
-    const Coded once = code_in_blocks(glyphs, 1, 1u << 17), twice = code_in_blocks(glyphs + glyphs, 1, 1u << 17);
+    const Coded once = code(glyphs, 1, 1u << 17), twice = code(glyphs + glyphs, 1, 1u << 17);
     EXPECT_EQ(twice.info.table_blocks, twice.info.blocks);
     EXPECT_GE(twice.info.blocks, 4u);
     EXPECT_LT(twice.frame.size(), once.frame.size() * 11 / 10);
     // A random walk's table block is weak (under 5:1): zstd of its bytes
     // is tried and kept, block by block, as before.
     const std::string walk = corpus("random/walk-8.fc");  // 100 000 steps
-    const Coded w = code_in_blocks(walk + walk, 1, 100000);
+    const Coded w = code(walk + walk, 1, 100000);
     EXPECT_EQ(w.info.blocks, 2u);
     EXPECT_EQ(w.info.raw_blocks, w.info.blocks);
 }

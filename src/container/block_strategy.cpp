@@ -320,12 +320,11 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     if (s.thorough || s.level < kLightCmLevel || s.timed || block.axes != 2 || job.steps == 0 ||
         job.steps > kMaxBlockSteps || (type != kSegmentModel && type != kTable && type != kStepModel))
         return false;
-    const auto wins = light_wins;
     // (the whole block's coding is kept for cm_pass(), which takes it when
     // the window holds no steps)
     auto whole_wins = [&] {
         std::string model = write_light_cm_step_model(block);
-        if (!wins(model.size() + 8, best.size())) return false;
+        if (!light_wins(model.size() + 8, best.size())) return false;
         job.light_model = std::move(model);
         return true;
     };
@@ -339,7 +338,7 @@ bool light_cm_may_win(BlockJob& job, const EncoderSettings& s, unsigned type, co
     else if (type == kTable && made.table != 0 && !s.arc_method) other = made.table;
     else if (type == kTable) other = write_table_block(sample, s.profile, cut, table_effort(s.level)).size();
     else other = made.step != 0 ? made.step : write_step_model(sample, kFastStepOrder).size();
-    if (!wins(light, other)) return false;
+    if (!light_wins(light, other)) return false;
     // A table block's matches reach across the whole block, the sample's
     // do not (the same glyphs at the same places: 0.875 on the sample, 1.01
     // on the whole block of pages-big-grbl.fc): against it the whole block.
