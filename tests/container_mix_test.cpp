@@ -173,7 +173,7 @@ TEST(MixedModels, PayloadBytesArePinned) {
 
 // Both codings decode (model bytes 0-3); the curvature flag is part of the
 // coding (the same bytes under the other flag do not give the block back);
-// a model byte above 4 (4: the context-mixing step model, tested in
+// a model byte above 6 (4-6: the context-mixing step models, tested in
 // container_mix_cm_test.cpp) is corrupt at payload byte 0.
 TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
     const Block b = fixed_block(contours(9, 60));
@@ -201,7 +201,7 @@ TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
         r = read_step_model(step, 2, true, other, counts, "t", nullptr, kFormatVersion, nullptr, true);
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
-        for (const unsigned bad : {6u, 7u, 128u, 255u}) {
+        for (const unsigned bad : {7u, 8u, 128u, 255u}) {
             seg[0] = static_cast<char>(bad);
             step[0] = static_cast<char>(bad);
             r = read_segment_model(seg, Profile::eval8, 2, true, other, counts, "blk", nullptr, nullptr, false, true);

@@ -38,13 +38,18 @@ enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, 
 /// (bit 0) and the flag kMixedCurvature (bit 1: two more hashed models,
 /// docs/FORMAT.md 1.11.1); or kMixedStepCm, the context-mixing step model
 /// (docs/FORMAT.md 1.11.2); or kMixedStepCmLight, its light version
-/// (docs/FORMAT.md 1.11.3).
+/// (docs/FORMAT.md 1.11.3); or kMixedStepCmDss, it with the longest digital
+/// straight segment as context (docs/FORMAT.md 1.11.4).
 inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1, kMixedCurvature = 2, kMixedStepCm = 4,
-                          kMixedStepCmLight = 5;
+                          kMixedStepCmLight = 5, kMixedStepCmDss = 6;
+/// A type 6 payload's first byte names a context-mixing step model.
+inline constexpr bool is_cm_step_model(unsigned byte) {
+    return byte == kMixedStepCm || byte == kMixedStepCmLight || byte == kMixedStepCmDss;
+}
 /// The model (kSegmentModel or kStepModel) a type 6 payload's first byte
 /// names, or kEnd for a byte that names none.
 inline constexpr unsigned mixed_model_of(unsigned byte) {
-    if (byte == kMixedStepCm || byte == kMixedStepCmLight) return kStepModel;
+    if (is_cm_step_model(byte)) return kStepModel;
     return byte > (kMixedStep | kMixedCurvature) ? kEnd : (byte & kMixedStep) ? kStepModel : kSegmentModel;
 }
 /// Block flags (version 1: the flags byte; version 2: bits 3.. of the block byte).

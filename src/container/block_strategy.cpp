@@ -285,7 +285,7 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 }
 
 // The strong levels try the context-mixing step model (docs/FORMAT.md
-// 1.11.2) on two-axis blocks against the mixed coding of the model the
+// 1.11.4) on two-axis blocks against the mixed coding of the model the
 // first pass chose, before zstd's blocks: on a block of more than
 // kCmSampleSteps steps both code about kCmSampleSteps steps spread over it
 // (no window): a segment-model block's whole chains (spread_chains(), with
@@ -295,6 +295,9 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // every glyph and traced file 8-33 % smaller and was taken on one plot
 // file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
 constexpr std::uint64_t kCmSampleSteps = 1u << 16;
+// The margin of a sample's decision for the model against the segment model
+// (cm_step_model_may_win(), cm_step_model_first() below).
+constexpr std::size_t kCmFirstMargin = 16;
 
 // The fast levels from kLightCmLevel try the light context-mixing step
 // model (docs/FORMAT.md 1.11.3) on two-axis blocks that are coded by a model
@@ -436,7 +439,12 @@ bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned typ
         const Block& b = whole ? block : sample;
         const Cut& c = whole ? job.cut : cut;
         const std::size_t cm = sample_cm != 0 ? sample_cm : write_cm_step_model(b).size();
-        return cm < write_segment_model(b, s.profile, c, nullptr, false, true).size();
+        const std::size_t segment = write_segment_model(b, s.profile, c, nullptr, false, true).size();
+        // A sample of whole chains holds fewer of the block's repeats, which
+        // the segment model's item matches gain more from: the model must
+        // win by the margin of cm_step_model_first().
+        if (!whole) return cm * kCmFirstMargin <= segment * (kCmFirstMargin - 1);
+        return cm < segment;
     }
     if (type == kStepModel) {
         const Block sample = whole ? Block{} : sample_of(block, kCmSampleSteps);
@@ -469,7 +477,6 @@ bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned typ
 // pages-big-grbl.fc to the model, 7.7 % larger). Such a block skips the segmenters, the
 // other models and zstd (a third to a half of -L 19's time on glyph
 // contours); others (plots, random walks, near ties) take the full choice.
-constexpr std::size_t kCmFirstMargin = 16;
 
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).

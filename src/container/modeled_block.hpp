@@ -43,10 +43,13 @@ std::string write_step_model(const Block& block, int order = 0, const WindowView
 std::string write_mixed_step_model(const Block& block, int order, const WindowView* window = nullptr,
                                    bool curvature = true);
 
-/// The payload of a block type 6 of the context-mixing step model (model
-/// byte kMixedStepCm, docs/FORMAT.md 1.11.2); empty when the block is not
-/// two-axis. With `window`, its match model starts from the window's steps.
-std::string write_cm_step_model(const Block& block, const WindowView* window = nullptr);
+/// The payload of a block type 6 of the context-mixing step model: model
+/// byte kMixedStepCmDss (docs/FORMAT.md 1.11.4, what the encoder writes) or
+/// kMixedStepCm (1.11.2, its version without the DSS; any other `model`:
+/// empty); empty when the block is not two-axis. With `window`, its match
+/// model starts from the window's steps.
+std::string write_cm_step_model(const Block& block, const WindowView* window = nullptr,
+                                unsigned model = kMixedStepCmDss);
 /// The same with the light model (model byte kMixedStepCmLight,
 /// docs/FORMAT.md 1.11.3): two hashed models, one weight set, no
 /// probability map; about twice as fast, 9-11 % larger on large contours.
@@ -89,8 +92,8 @@ Result<void> read_step_model(std::string_view payload, int axes, bool expand, Bl
                              const WindowView* window = nullptr, int version = kFormatVersion,
                              StepHistory* running = nullptr, bool mixed = false);
 
-/// The reader of a kMixedStepCm or kMixedStepCmLight payload (read_step_model() calls it; the
-/// same arguments).
+/// The reader of a context-mixing step model's payload (model byte 4, 5 or
+/// 6; read_step_model() calls it; the same arguments).
 Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
                                 const std::string& where, const WindowView* window, StepHistory* running);
 

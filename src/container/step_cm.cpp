@@ -1,22 +1,26 @@
-// The context-mixing step model (docs/FORMAT.md 1.11.2, block type 6 model
-// byte 4): two-axis chains coded step by step, in the manner of lpaq1 and
-// paq8 but over turns instead of bytes. Each step is an end bit and, but at
-// a chain's end, its turn against the previous step, binarized by a small
-// tree whose first decision is "straight on"; every decision of the tree is
-// predicted by hashed context models (orders of 1 to 24 turns, the runs of
-// the digital straight segment being drawn, the way back to the chain's
-// start, the match model's prediction), their stretched probabilities mixed
-// by two online-trained mixers whose weights a small context selects, then
-// refined by two adaptive probability maps. A stretch repeated anywhere
-// before is repeated steps, whatever cut a segment model would give it.
-// One template (CmStepCoder<Io>) runs both directions; integer arithmetic
-// only, so any decoder that follows FORMAT.md reproduces every probability.
-// Complexity: one plain bit and 0-5 mixed bits per step (eleven hashed
+// The context-mixing step models (docs/FORMAT.md 1.11.2-1.11.4, block type
+// 6 model bytes 4, 5 and 6): two-axis chains coded step by step, in the
+// manner of lpaq1 and paq8 but over turns instead of bytes. Each step is an
+// end bit and, but at a chain's end, its turn against the previous step,
+// binarized by a small tree whose first decision is "straight on"; every
+// decision of the tree is predicted by hashed context models (orders of 1 to
+// 24 turns, the runs of the digital straight segment being drawn, the way
+// back to the chain's start, the match model's prediction; model byte 6 adds
+// the longest DSS ending at the last step and what each turn would do to it,
+// dss_suffix.hpp), their stretched probabilities mixed by online-trained
+// mixers whose weights a small context selects, then refined by two
+// adaptive probability maps (model byte 5: two models, one mixer, no map).
+// A stretch repeated anywhere before is repeated steps, whatever cut a
+// segment model would give it. One template (CmStepCoder<Io, CmKind>) runs
+// both directions of all three; integer arithmetic only, so any decoder
+// that follows FORMAT.md reproduces every probability.
+// Complexity: one plain bit and 0-5 mixed bits per step (11 or 13 hashed
 // models each; one mixed bit for a step straight on, five for a turn of
-// +-135 degrees), one cache line per
-// model and step, fetched while the step before is coded (0.3-0.6 us a step
-// on the development machine); memory 32 bytes per hashed row, 2^12..2^21
-// rows by the block's step count (FORMAT.md), plus the step history.
+// +-135 degrees), one cache line per model and step, fetched while the step
+// before is coded (0.3-0.6 us a step on the development machine; model byte
+// 6 about a third slower than 4); memory 32 bytes per hashed row,
+// 2^12..2^21 rows by the block's step count (FORMAT.md), plus the step
+// history.
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -25,6 +29,12 @@
 #include <new>
 #include <type_traits>
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define STEPZIP_CM_AVX2 1
+#endif
+
+#include "dss_suffix.hpp"
 #include "mix.hpp"
 #include "modeled_block.hpp"
 #include "range_coder.hpp"
@@ -51,7 +61,7 @@ constexpr std::array<std::array<std::int8_t, kNodes>, 8> kPath = {{
     {1, 0, 1, -1, -1, -1, -1},    // 7
 }};
 
-constexpr int kModels = 11;                 // hashed context models
+constexpr int kModels = 11;                 // hashed context models of model byte 4 (13 of model byte 6)
 constexpr int kCountLimit = 255;            // a counter's rate settles at 1/(limit + 1.5)
 constexpr std::int64_t kMixRate = 3;        // mixer learning rate (see train())
 constexpr std::int32_t kInitWeight = 16384; // 0.25 in 16.16
@@ -167,6 +177,36 @@ int row_bits_for(std::uint64_t nsteps) {
 
 using CmCounts = StepCounts;
 
+#if defined(STEPZIP_CM_AVX2)
+// The mixer's loops eight weights at a time where the CPU has AVX2 (the
+// same integers as the loops of CmStepCoder: every product and sum is
+// exact, the shift arithmetic). N: a multiple of 8.
+template <int N>
+[[gnu::target("avx2")]] std::int64_t dot_avx2(const std::int32_t* w, const std::int32_t* x) {
+    __m256i acc = _mm256_setzero_si256();
+    for (int k = 0; k < N; k += 8) {
+        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k));
+        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
+        // the even lanes' products, then the odd lanes' (signed 32 x 32 -> 64)
+        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(a, b));
+        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(_mm256_srli_epi64(a, 32), _mm256_srli_epi64(b, 32)));
+    }
+    const __m128i s = _mm_add_epi64(_mm256_castsi256_si128(acc), _mm256_extracti128_si256(acc, 1));
+    return _mm_cvtsi128_si64(s) + _mm_extract_epi64(s, 1);
+}
+template <int N>
+[[gnu::target("avx2")]] void train_avx2(std::int32_t* w, const std::int32_t* x, std::int32_t err, std::int32_t limit) {
+    const __m256i e = _mm256_set1_epi32(err), hi = _mm256_set1_epi32(limit), lo = _mm256_set1_epi32(-limit);
+    for (int k = 0; k < N; k += 8) {
+        const __m256i xv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
+        const __m256i v = _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k)),
+                                           _mm256_srai_epi32(_mm256_mullo_epi32(xv, e), 16));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(w + k), _mm256_max_epi32(lo, _mm256_min_epi32(v, hi)));
+    }
+}
+const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+#endif
+
 // The light model (model byte 5, docs/FORMAT.md 1.11.3) keeps models
 // kLightSet of the eleven (orders 3 and 16 turns), the match input, one
 // weight set and no probability map. Chosen on glyphs-big.fc and
@@ -175,12 +215,40 @@ constexpr std::array<int, 2> kLightSet = {1, 5};
 static_assert(std::none_of(kLightSet.begin(), kLightSet.end(), [](int k) { return k == 7 || k == 8 || k == 10; }),
               "the light model keeps no walk (StepWalk) for models 7, 8 and 10");
 
-template <class Io, bool Light>
-class CmStepCoder : public StepCoderShell<CmStepCoder<Io, Light>, Io> {
-    friend class StepCoderShell<CmStepCoder<Io, Light>, Io>;
-    static constexpr int kM = Light ? static_cast<int>(kLightSet.size()) : kModels;  // hashed models used
+// The three models of the coder: model byte 5, 4 and 6 (docs/FORMAT.md
+// 1.11.3, 1.11.2, 1.11.4).
+enum class CmKind { light, full, dss };
+
+// Model byte 6's third weight set: per node, the DSS state (dss_state()),
+// the last break's side and the word's length class (dss_select()).
+constexpr std::size_t kDssSets = kDssStates * 3 * 4;
+
+// Model byte 6's DSS value (models 11 and 12): the word's state from `prev`,
+// length class, place in its strip (8 classes), slope (17 classes) and last
+// three break sides.
+inline std::uint64_t dss_value(const DssWord& w, int prev) {
+    const std::int64_t r = w.a * w.m.x - w.b * w.m.y;
+    const auto place = static_cast<std::uint64_t>(((r - w.mu) * 8) / w.b);
+    const auto slope = static_cast<std::uint64_t>((w.a * 16) / w.b);
+    const auto len = static_cast<std::uint64_t>(std::min(bit_length(static_cast<std::uint64_t>(w.len)), 15));
+    const std::uint64_t v = ((static_cast<std::uint64_t>(dss_state(w, prev)) << 4 | len) << 3 | place) << 5 | slope;
+    return v * 27 + static_cast<std::uint64_t>(w.brk);
+}
+inline std::size_t dss_select(const DssWord& w, int prev) {
+    const int len = std::min(bit_length(static_cast<std::uint64_t>(w.len)), 15);
+    return static_cast<std::size_t>((dss_state(w, prev) * 3 + w.brk % 3) * 4 + std::min(len >> 1, 3));
+}
+
+template <class Io, CmKind K>
+class CmStepCoder : public StepCoderShell<CmStepCoder<Io, K>, Io> {
+    friend class StepCoderShell<CmStepCoder<Io, K>, Io>;
+    static constexpr bool Light = K == CmKind::light, Dss = K == CmKind::dss;
+    static constexpr int kM = Light ? static_cast<int>(kLightSet.size()) : Dss ? kModels + 2 : kModels;  // hashed models used
     static constexpr int kIn = kM + 2;
-    static constexpr std::size_t kSets = Light ? kNodes * 7 : kNodes * 7 + kNodes * 64;
+    // A weight set's stride: the inputs rounded up to eight for the AVX2
+    // loops (the inputs past kIn are 0, so their weights never move).
+    static constexpr int kStride = Light ? kIn : (kIn + 7) / 8 * 8;
+    static constexpr std::size_t kSets = Light ? kNodes * 7 : kNodes * 7 + kNodes * 64 + (Dss ? kNodes * kDssSets : 0);
 
 public:
     CmStepCoder(Io& io, std::uint64_t nsteps, StepHistory* shared)
@@ -193,6 +261,7 @@ public:
 
     Point start(const Point& want) {
         w_.start_chain();
+        if constexpr (Dss) dss_.start_chain();
         ahead_sym_ = -1;
         return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
     }
@@ -206,6 +275,7 @@ private:
             sym = kEndSymbol;  // forced: no bits
         } else {
             const int pred = m_.predicted(h_);
+            if constexpr (Dss) dss_sel_ = dss_select(dss_.word(), prev_);
             contexts(pred);
             if constexpr (I::kDecode) prefetch_after(prev_);
             else if (want != kEndSymbol) prefetch_after(want);
@@ -237,7 +307,7 @@ private:
     // One mixed decision of the turn tree.
     template <class I>
     [[gnu::always_inline]] int node(I& io, int n, int want) {
-        std::array<std::int32_t, kIn> x;
+        std::array<std::int32_t, kStride> x{};
         for (int k = 0; k < kM; ++k)
             x[static_cast<std::size_t>(k)] = stretch(counter_p16(row_[static_cast<std::size_t>(k)]->p[n]));
         // The match model: its turn's bit at this node, as sure as matches
@@ -253,14 +323,16 @@ private:
         }
         x[kM + 1] = 256;
         const int mstate = expect < 0 ? 0 : 1 + expect + 2 * std::min(lb >> 3, 2);
-        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kIn];
-        std::int32_t* w2 = Light ? w1 : &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kIn];
-        const std::int32_t s1 = dot(w1, x), s2 = Light ? s1 : dot(w2, x);
+        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kStride];
+        std::int32_t* w2 = Light ? w1 : &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kStride];
+        // Model byte 6: a third set by the DSS (dss_select()), weighted double.
+        std::int32_t* w3 = Dss ? &weights_[(kNodes * 7 + kNodes * 64 + static_cast<std::size_t>(n) * kDssSets + dss_sel_) * kStride] : w1;
+        const std::int32_t s1 = dot(w1, x), s2 = Light ? s1 : dot(w2, x), s3 = Dss ? dot(w3, x) : s1;
         std::int32_t p;
         if constexpr (Light) {
             p = mixdetail::squash_within(s1);  // (dot() clamps to +-2047)
         } else {
-            const std::int32_t s = (s1 + s2) >> 1;
+            const std::int32_t s = Dss ? (s1 + s2 + 2 * s3) >> 2 : (s1 + s2) >> 1;
             const std::int32_t a1 = apm1_.refine(s, static_cast<std::size_t>(n) * 512 + (turns_ & 511));
             const std::size_t row2 = (static_cast<std::size_t>(n) * 2 * 24 + (expect < 0 ? 0 : 24 * expect) +
                                       static_cast<std::size_t>(lb)) * 2 + (expect >= 0 ? 1u : 0u);
@@ -278,6 +350,7 @@ private:
         train(w1, x, mixdetail::squash_within(s1), bit);
         if constexpr (!Light) {
             train(w2, x, mixdetail::squash_within(s2), bit);
+            if constexpr (Dss) train(w3, x, mixdetail::squash_within(s3), bit);
             apm1_.update(bit);
             apm2_.update(bit);
         }
@@ -286,9 +359,16 @@ private:
         return bit;
     }
 
-    static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kIn>& x) {
+    static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kStride>& x) {
         std::int64_t d = 0;
-        for (int k = 0; k < kIn; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
+        bool done = false;
+#if defined(STEPZIP_CM_AVX2)
+        if constexpr (kStride % 8 == 0) {
+            if (kHasAvx2) d = dot_avx2<kStride>(w, x.data()), done = true;
+        }
+#endif
+        if (!done)
+            for (int k = 0; k < kIn; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
         d >>= 16;
         return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
     }
@@ -297,8 +377,13 @@ private:
     // <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
     static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
                   kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
-    static void train(std::int32_t* w, const std::array<std::int32_t, kIn>& x, std::int32_t out, int bit) {
+    static void train(std::int32_t* w, const std::array<std::int32_t, kStride>& x, std::int32_t out, int bit) {
         const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
+#if defined(STEPZIP_CM_AVX2)
+        if constexpr (kStride % 8 == 0) {
+            if (kHasAvx2) return train_avx2<kStride>(w, x.data(), err, kMaxWeight);
+        }
+#endif
         for (int k = 0; k < kIn; ++k) {
             const std::int32_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
             w[k] = std::clamp(v, -kMaxWeight, kMaxWeight);
@@ -318,22 +403,23 @@ private:
                         lo & 63);
     }
     static constexpr int slot_of(int k) {
-        if constexpr (!Light) return k;
+        if constexpr (Dss) return k;
+        if constexpr (!Light) return k < kModels ? k : -1;
         for (std::size_t i = 0; i < kLightSet.size(); ++i)
             if (kLightSet[i] == k) return static_cast<int>(i);
         return -1;
     }
     template <class Emit>
     [[gnu::always_inline]] static void context_hashes(int prev, std::uint64_t lo, std::uint64_t hi, const StepWalk& w,
-                                                      int pred, std::uint64_t mlen, Emit&& emit) {
+                                                      const DssWord& dss, int pred, std::uint64_t mlen, Emit&& emit) {
         const auto p = static_cast<std::uint64_t>(prev);
         auto order = [&](int n) -> std::uint64_t {  // the last n turns (n <= 24)
             if (n <= 21) return lo & ((std::uint64_t{1} << (3 * n)) - 1);
             return ctx_join(lo & ((std::uint64_t{1} << 63) - 1), hi & ((std::uint64_t{1} << (3 * (n - 21))) - 1));
         };
         // (the value of a model not used is never computed)
-        auto set = [&]<int K>(std::integral_constant<int, K>, auto value) {
-            if constexpr (slot_of(K) >= 0) emit(slot_of(K), hash_ctx(K, value()));
+        auto set = [&]<int M>(std::integral_constant<int, M>, auto value) {
+            if constexpr (slot_of(M) >= 0) emit(slot_of(M), hash_ctx(M, value()));
         };
         using std::integral_constant;
         set(integral_constant<int, 0>{}, [&] { return p << 3 | order(1); });
@@ -358,6 +444,15 @@ private:
             const std::int64_t cx = std::clamp<std::int64_t>(w.dx, -64, 64), cy = std::clamp<std::int64_t>(w.dy, -64, 64);
             return ctx_join(static_cast<std::uint64_t>((cx + 64) * 129 + cy + 64), p << 6 | order(2));
         });
+        // Model byte 6: the longest DSS ending here (dss_value()), with the
+        // last turn, and with the runs of model 7.
+        if constexpr (Dss) {
+            const std::uint64_t dv = dss_value(dss, prev);
+            set(integral_constant<int, 11>{}, [&] { return ctx_join(dv, order(1)); });
+            set(integral_constant<int, 12>{}, [&] {
+                return ctx_join(ctx_join(dv, static_cast<std::uint64_t>(std::min(w.run, 63))), w.runs & 0xFFFFu);
+            });
+        }
     }
 
     // The contexts of the next step, their rows prefetched. When the step
@@ -373,7 +468,7 @@ private:
             }
             return;
         }
-        context_hashes(prev_, turns_, turns_hi_, w_, pred, m_.len, [this](int k, std::uint64_t h) {
+        context_hashes(prev_, turns_, turns_hi_, w_, dss_word(), pred, m_.len, [this](int k, std::uint64_t h) {
             hash_[static_cast<std::size_t>(k)] = h;
             rows_.prefetch(h);
         });
@@ -397,8 +492,12 @@ private:
         const auto turn = static_cast<std::uint64_t>((sym - prev_) & 7);
         StepWalk w = w_;
         if constexpr (!Light) w.step(sym, static_cast<unsigned>(turn));  // (as in note_turn())
-        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, -1, 0, SkipPred{&rows_, &ahead_});
-        ahead_sym_ = sym;
+        // (a step that ends the DSS word: its hashes are made again after it)
+        DssWord d = dss_word();
+        const bool ends_word = Dss && (d.len >= DssSuffix::kCap - 1 || !d.push(sym));
+        context_hashes(sym, (turns_ << 3) | turn, (turns_hi_ << 3) | ((turns_ >> 60) & 7), w, d, -1, 0,
+                       SkipPred{&rows_, &ahead_});
+        ahead_sym_ = ends_word ? -1 : sym;
     }
 
     void note_turn(int sym) {
@@ -406,13 +505,19 @@ private:
         turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
         if constexpr (!Light) w_.step(sym, turn);  // (the light models do not read the walk)
+        if constexpr (Dss) dss_.push(sym);
         prev_ = sym;
+    }
+    const DssWord& dss_word() const {
+        if constexpr (Dss) return dss_.word();
+        static const DssWord none;
+        return none;
     }
 
     Io& io_;
     RowTable rows_;
     Apm apm1_, apm2_;
-    std::array<std::int32_t, kSets * kIn> weights_;
+    std::array<std::int32_t, kSets * kStride> weights_;
     std::array<std::uint64_t, kM> hash_{};
     std::array<std::uint64_t, kM> ahead_{};  // the hashes prefetch_after() made
     int ahead_sym_ = -1;                      // for a next step of this code (-1: none)
@@ -429,25 +534,27 @@ private:
     std::uint64_t turns_ = 0;     // turns, 3 bits each, latest lowest (across chains)
     std::uint64_t turns_hi_ = 0;  // the turns before those (turns_ holds 21 whole ones)
     StepWalk w_;
+    DssSuffix dss_;           // model byte 6 only
+    std::size_t dss_sel_ = 0;  // its weight set's index (dss_select())
 };
 
 }  // namespace
 
 namespace {
 
-template <bool Light>
+template <CmKind K>
 std::string write_cm(const Block& block, const WindowView* window) {
     if (block.axes != 2) return {};
     CmCounts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
     std::string out;
-    put_u8(out, Light ? kMixedStepCmLight : kMixedStepCm);
+    put_u8(out, K == CmKind::light ? kMixedStepCmLight : K == CmKind::dss ? kMixedStepCmDss : kMixedStepCm);
     put_varint(out, c.nchains);
     put_varint(out, c.nsteps);
     put_layout(out, block.layout);
     EncIo io;
-    auto coder = std::make_unique<CmStepCoder<EncIo, Light>>(io, c.nsteps, nullptr);
+    auto coder = std::make_unique<CmStepCoder<EncIo, K>>(io, c.nsteps, nullptr);
     if (window) coder->prime(*window);
     if (!encode_step_chains(*coder, block, c)) return {};
     out += io.rc.finish();
@@ -456,10 +563,14 @@ std::string write_cm(const Block& block, const WindowView* window) {
 
 }  // namespace
 
-std::string write_cm_step_model(const Block& block, const WindowView* window) { return write_cm<false>(block, window); }
+std::string write_cm_step_model(const Block& block, const WindowView* window, unsigned model) {
+    if (model == kMixedStepCm) return write_cm<CmKind::full>(block, window);
+    if (model == kMixedStepCmDss) return write_cm<CmKind::dss>(block, window);
+    return {};
+}
 
 std::string write_light_cm_step_model(const Block& block, const WindowView* window) {
-    return write_cm<true>(block, window);
+    return write_cm<CmKind::light>(block, window);
 }
 
 Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
@@ -468,7 +579,7 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
     if (axes != 2)
         return make_error(Errc::corrupt, where + " byte 0: step-model block on " + std::to_string(axes) + " axes");
     unsigned kind;
-    if (!cur.u8(kind) || (kind != kMixedStepCm && kind != kMixedStepCmLight))
+    if (!cur.u8(kind) || !is_cm_step_model(kind))
         return make_error(Errc::corrupt, where + " byte 0: not a context-mixing step model");
     CmCounts c;
     if (!cur.varint(c.nchains) || !cur.varint(c.nsteps))
@@ -484,11 +595,16 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
         start_output(out, expand, axes, std::move(*layout));
         return decode_step_chains(coder, io, c, expand, out, counts, base, where);
     };
+    StepHistory* shared = window ? running : nullptr;
     if (kind == kMixedStepCmLight) {
-        auto coder = std::make_unique<CmStepCoder<DecIo, true>>(io, c.nsteps, window ? running : nullptr);
+        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::light>>(io, c.nsteps, shared);
         return run(*coder);
     }
-    auto coder = std::make_unique<CmStepCoder<DecIo, false>>(io, c.nsteps, window ? running : nullptr);
+    if (kind == kMixedStepCmDss) {
+        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::dss>>(io, c.nsteps, shared);
+        return run(*coder);
+    }
+    auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::full>>(io, c.nsteps, shared);
     return run(*coder);
 }
 

@@ -271,8 +271,7 @@ Result<void> read_step_model_with(std::string_view payload, int axes, bool expan
 Result<void> read_step_model(std::string_view payload, int axes, bool expand, Block& out,
                              BlockCounts& counts, const std::string& where, const WindowView* window,
                              int version, StepHistory* running, bool mixed) {
-    if (mixed && !payload.empty() &&
-        (static_cast<unsigned char>(payload[0]) == kMixedStepCm || static_cast<unsigned char>(payload[0]) == kMixedStepCmLight))
+    if (mixed && !payload.empty() && is_cm_step_model(static_cast<unsigned char>(payload[0])))
         return read_cm_step_model(payload, axes, expand, out, counts, where, window, running);
     if (mixed)
         return read_step_model_with<MixDecIo>(payload, axes, expand, out, counts, where, window, version, running);

@@ -200,7 +200,7 @@ short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
 files.update({
     # The model byte names no model (0-3 do: model and curvature flag; 4 the
     # context-mixing step model, 5 its light version).
-    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 6))),
+    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 7))),
     # The range-coded stream lost its last byte (size and checksum redone):
     # the decoder notices at the payload's end.
     'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
