@@ -28,6 +28,10 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define STEPZIP_MIX_AVX2 1
+#endif
 
 #include "range_coder.hpp"
 
@@ -203,7 +207,65 @@ inline HashedTables& thread_tables() {
     thread_local HashedTables tables;
     return tables;
 }
+
+#if defined(STEPZIP_MIX_AVX2)
+// The loops of mix_dot() and mix_train() eight weights at a time, where the
+// CPU has AVX2: the same integers (every product and sum exact, the shift
+// arithmetic). N: a multiple of 8.
+template <int N>
+[[gnu::target("avx2")]] std::int64_t dot_avx2(const std::int32_t* w, const std::int32_t* x) {
+    __m256i acc = _mm256_setzero_si256();
+    for (int k = 0; k < N; k += 8) {
+        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k));
+        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
+        // the even lanes' products, then the odd lanes' (signed 32 x 32 -> 64)
+        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(a, b));
+        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(_mm256_srli_epi64(a, 32), _mm256_srli_epi64(b, 32)));
+    }
+    const __m128i s = _mm_add_epi64(_mm256_castsi256_si128(acc), _mm256_extracti128_si256(acc, 1));
+    return _mm_cvtsi128_si64(s) + _mm_extract_epi64(s, 1);
+}
+template <int N>
+[[gnu::target("avx2")]] void train_avx2(std::int32_t* w, const std::int32_t* x, std::int32_t err, std::int32_t limit) {
+    const __m256i e = _mm256_set1_epi32(err), hi = _mm256_set1_epi32(limit), lo = _mm256_set1_epi32(-limit);
+    for (int k = 0; k < N; k += 8) {
+        const __m256i xv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
+        const __m256i v = _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k)),
+                                           _mm256_srai_epi32(_mm256_mullo_epi32(xv, e), 16));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(w + k), _mm256_max_epi32(lo, _mm256_min_epi32(v, hi)));
+    }
+}
+inline const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+#endif
 }  // namespace mixdetail
+
+/// A mixer's dot product over a weight set of stride N: the sum of w[k]·x[k]
+/// for k < n in 64 bits. The inputs from n to N must be 0 (the AVX2 loop
+/// reads them when N is a multiple of 8).
+template <int N>
+[[gnu::always_inline]] inline std::int64_t mix_dot(const std::int32_t* w, const std::int32_t* x, int n) noexcept {
+#if defined(STEPZIP_MIX_AVX2)
+    if constexpr (N % 8 == 0) {
+        if (mixdetail::kHasAvx2) return mixdetail::dot_avx2<N>(w, x);
+    }
+#endif
+    std::int64_t d = 0;
+    for (int k = 0; k < n; ++k) d += static_cast<std::int64_t>(w[k]) * x[k];
+    return d;
+}
+/// A mixer's update over the same: w[k] = clamp(w[k] + ((x[k]·err) >> 16),
+/// -limit, limit) for k < n. Precondition: every x[k]·err fits in 32 bits
+/// (the callers' static_asserts), w[k] + the step too.
+template <int N>
+[[gnu::always_inline]] inline void mix_train(std::int32_t* w, const std::int32_t* x, std::int32_t err, std::int32_t limit,
+                                             int n) noexcept {
+#if defined(STEPZIP_MIX_AVX2)
+    if constexpr (N % 8 == 0) {
+        if (mixdetail::kHasAvx2) return mixdetail::train_avx2<N>(w, x, err, limit);
+    }
+#endif
+    for (int k = 0; k < n; ++k) w[k] = std::clamp(w[k] + ((x[k] * err) >> 16), -limit, limit);
+}
 
 /// Stretched probability of a 1, p1 in 1..65535 (16-bit).
 [[gnu::always_inline]] inline std::int32_t stretch(std::uint32_t p1) noexcept {

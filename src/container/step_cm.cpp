@@ -29,11 +29,6 @@
 #include <new>
 #include <type_traits>
 
-#if defined(__GNUC__) && defined(__x86_64__)
-#include <immintrin.h>
-#define STEPZIP_CM_AVX2 1
-#endif
-
 #include "dss_suffix.hpp"
 #include "mix.hpp"
 #include "modeled_block.hpp"
@@ -177,35 +172,6 @@ int row_bits_for(std::uint64_t nsteps) {
 
 using CmCounts = StepCounts;
 
-#if defined(STEPZIP_CM_AVX2)
-// The mixer's loops eight weights at a time where the CPU has AVX2 (the
-// same integers as the loops of CmStepCoder: every product and sum is
-// exact, the shift arithmetic). N: a multiple of 8.
-template <int N>
-[[gnu::target("avx2")]] std::int64_t dot_avx2(const std::int32_t* w, const std::int32_t* x) {
-    __m256i acc = _mm256_setzero_si256();
-    for (int k = 0; k < N; k += 8) {
-        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k));
-        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
-        // the even lanes' products, then the odd lanes' (signed 32 x 32 -> 64)
-        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(a, b));
-        acc = _mm256_add_epi64(acc, _mm256_mul_epi32(_mm256_srli_epi64(a, 32), _mm256_srli_epi64(b, 32)));
-    }
-    const __m128i s = _mm_add_epi64(_mm256_castsi256_si128(acc), _mm256_extracti128_si256(acc, 1));
-    return _mm_cvtsi128_si64(s) + _mm_extract_epi64(s, 1);
-}
-template <int N>
-[[gnu::target("avx2")]] void train_avx2(std::int32_t* w, const std::int32_t* x, std::int32_t err, std::int32_t limit) {
-    const __m256i e = _mm256_set1_epi32(err), hi = _mm256_set1_epi32(limit), lo = _mm256_set1_epi32(-limit);
-    for (int k = 0; k < N; k += 8) {
-        const __m256i xv = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(x + k));
-        const __m256i v = _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + k)),
-                                           _mm256_srai_epi32(_mm256_mullo_epi32(xv, e), 16));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(w + k), _mm256_max_epi32(lo, _mm256_min_epi32(v, hi)));
-    }
-}
-const bool kHasAvx2 = __builtin_cpu_supports("avx2");
-#endif
 
 // The light model (model byte 5, docs/FORMAT.md 1.11.3) keeps models
 // kLightSet of the eleven (orders 3 and 16 turns), the match input, one
@@ -360,16 +326,7 @@ private:
     }
 
     static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kStride>& x) {
-        std::int64_t d = 0;
-        bool done = false;
-#if defined(STEPZIP_CM_AVX2)
-        if constexpr (kStride % 8 == 0) {
-            if (kHasAvx2) d = dot_avx2<kStride>(w, x.data()), done = true;
-        }
-#endif
-        if (!done)
-            for (int k = 0; k < kIn; ++k) d += static_cast<std::int64_t>(w[k]) * x[static_cast<std::size_t>(k)];
-        d >>= 16;
+        const std::int64_t d = mix_dot<kStride>(w, x.data(), kIn) >> 16;
         return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
     }
     // Each weight moves by input * error * kMixRate / 2^16 (error of the
@@ -379,15 +336,7 @@ private:
                   kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
     static void train(std::int32_t* w, const std::array<std::int32_t, kStride>& x, std::int32_t out, int bit) {
         const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
-#if defined(STEPZIP_CM_AVX2)
-        if constexpr (kStride % 8 == 0) {
-            if (kHasAvx2) return train_avx2<kStride>(w, x.data(), err, kMaxWeight);
-        }
-#endif
-        for (int k = 0; k < kIn; ++k) {
-            const std::int32_t v = w[k] + ((x[static_cast<std::size_t>(k)] * err) >> 16);
-            w[k] = std::clamp(v, -kMaxWeight, kMaxWeight);
-        }
+        mix_train<kStride>(w, x.data(), err, kMaxWeight, kIn);
     }
 
     // The hashed contexts of a step (docs/FORMAT.md 1.11.2) after the turns
