@@ -19,7 +19,8 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 stepzip=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 out=$2
-for p in fonts-urw-base35 fonts-liberation2 fonts-freefont-ttf hershey-fonts-data libfreetype-dev pkg-config g++; do
+for p in fonts-urw-base35 fonts-liberation2 fonts-freefont-ttf hershey-fonts-data libfreetype-dev pkg-config g++ \
+    adwaita-icon-theme librsvg2-bin netpbm; do  # (the last three: icon_contours.sh)
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
     echo "bench_inputs.sh: missing Debian package: $p" >&2; exit 1; }
 done
