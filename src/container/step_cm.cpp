@@ -135,16 +135,17 @@ private:
 // trained.
 class Apm {
 public:
-    explicit Apm(int rows) : t_(static_cast<std::size_t>(rows) * 33) {
-        // Every row starts the same.
-        for (int j = 0; j < 33; ++j) t_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
-        for (std::size_t r = 1; r < static_cast<std::size_t>(rows); ++r)
-            std::memcpy(&t_[r * 33], &t_[0], 33 * sizeof(std::uint16_t));
-    }
+    // Every row starts the same; a row is filled when first used (a small
+    // block touches few of them).
+    explicit Apm(int rows) : t_(static_cast<std::size_t>(rows) * 33), ready_(static_cast<std::size_t>(rows)) {}
     std::int32_t refine(std::int32_t st, std::size_t row) {
         const std::int32_t pos = std::clamp(st, -2047, 2047) + 2048;
         const std::int32_t j = pos >> 7, frac = pos & 127;
         std::uint16_t* r = &t_[row * 33];
+        if (!ready_[row]) {
+            std::memcpy(r, kFirst.data(), sizeof kFirst);
+            ready_[row] = 1;
+        }
         at_ = &r[j + (frac >> 6)];
         return (r[j] * (128 - frac) + r[j + 1] * frac) >> 7;
     }
@@ -154,7 +155,13 @@ public:
     }
 
 private:
+    static constexpr std::array<std::uint16_t, 33> kFirst = [] {
+        std::array<std::uint16_t, 33> a{};
+        for (int j = 0; j < 33; ++j) a[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
+        return a;
+    }();
     std::vector<std::uint16_t> t_;
+    std::vector<std::uint8_t> ready_;
     std::uint16_t* at_ = nullptr;
 };
 
@@ -220,7 +227,6 @@ public:
     CmStepCoder(Io& io, std::uint64_t nsteps, StepHistory* shared)
         : io_(io), rows_(row_bits_for(nsteps)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
           own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_) {
-        for (auto& w : weights_) w = kInitWeight;
         for (auto& r : match_)
             for (auto& v : r) v = kCounterInit;
     }
@@ -289,10 +295,10 @@ private:
         }
         x[kM + 1] = 256;
         const int mstate = expect < 0 ? 0 : 1 + expect + 2 * std::min(lb >> 3, 2);
-        std::int32_t* w1 = &weights_[static_cast<std::size_t>(n * 7 + mstate) * kStride];
-        std::int32_t* w2 = Light ? w1 : &weights_[static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)) * kStride];
+        std::int32_t* w1 = weight_set(static_cast<std::size_t>(n * 7 + mstate));
+        std::int32_t* w2 = Light ? w1 : weight_set(static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)));
         // Model byte 6: a third set by the DSS (dss_select()), weighted double.
-        std::int32_t* w3 = Dss ? &weights_[(kNodes * 7 + kNodes * 64 + static_cast<std::size_t>(n) * kDssSets + dss_sel_) * kStride] : w1;
+        std::int32_t* w3 = Dss ? weight_set(kNodes * 7 + kNodes * 64 + static_cast<std::size_t>(n) * kDssSets + dss_sel_) : w1;
         const std::int32_t s1 = dot(w1, x), s2 = Light ? s1 : dot(w2, x), s3 = Dss ? dot(w3, x) : s1;
         std::int32_t p;
         if constexpr (Light) {
@@ -323,6 +329,17 @@ private:
         for (int k = 0; k < kM; ++k) counter_update(row_[static_cast<std::size_t>(k)]->p[n], bit);
         if (mm) counter_update(*mm, bit == expect);
         return bit;
+    }
+
+    // Weight set `s`, every weight kInitWeight when first used (model byte
+    // 6 has 3689 sets, a small block uses few).
+    std::int32_t* weight_set(std::size_t s) {
+        std::int32_t* w = &weights_[s * kStride];
+        if (!ready_[s]) {
+            std::fill(w, w + kStride, kInitWeight);
+            ready_[s] = 1;
+        }
+        return w;
     }
 
     static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kStride>& x) {
@@ -466,7 +483,8 @@ private:
     Io& io_;
     RowTable rows_;
     Apm apm1_, apm2_;
-    std::array<std::int32_t, kSets * kStride> weights_;
+    std::array<std::int32_t, kSets * kStride> weights_;  // (filled by weight_set())
+    std::array<std::uint8_t, kSets> ready_{};
     std::array<std::uint64_t, kM> hash_{};
     std::array<std::uint64_t, kM> ahead_{};  // the hashes prefetch_after() made
     int ahead_sym_ = -1;                      // for a next step of this code (-1: none)
