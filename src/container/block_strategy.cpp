@@ -295,9 +295,26 @@ void spread_chains(const Block& block, const Cut& cut, std::uint64_t limit, Bloc
 // every glyph and traced file 8-33 % smaller and was taken on one plot
 // file only (hershey-pages-grbl.fc, a step-model block before; 1 %).
 constexpr std::uint64_t kCmSampleSteps = 1u << 16;
-// The margin of a sample's decision for the model against the segment model
-// (cm_step_model_may_win(), cm_step_model_first() below).
+// A block of more than kCmSampleSteps steps that the context-mixing step
+// model codes well below the segment model is known for one before its
+// segments are cut (cm_step_model_first() below): on the block's whole
+// chains spread over it (about kCmSampleSteps steps, cut greedily and at the
+// default phase: the optimal segmenter's recut is most of the time there)
+// the model must come out at least 1/kCmFirstMargin smaller than the mixed
+// segment model of the cut whose plain model is smaller (chosen on
+// glyphs-big.fc, urw-big-*.fc and pages-big-grbl.fc of docs/benchmarks.md;
+// the greedy cut alone gave pages-big-grbl.fc to the model, 7.7 % larger).
+// Such a block skips the segmenters, the other models and zstd (a third to
+// a half of -L 19's time on glyph contours); others (plots, random walks,
+// near ties) take the full choice. cm_step_model_may_win() asks the same
+// margin of a segment-model block's sample.
 constexpr std::size_t kCmFirstMargin = 16;
+
+// Whether the model's `cm` bytes are at least 1/kCmFirstMargin below the
+// mixed segment model's `segment` bytes.
+bool cm_wins_by_margin(std::size_t cm, std::size_t segment) {
+    return cm * kCmFirstMargin <= segment * (kCmFirstMargin - 1);
+}
 
 // The fast levels from kLightCmLevel try the light context-mixing step
 // model (docs/FORMAT.md 1.11.3) on two-axis blocks that are coded by a model
@@ -443,7 +460,7 @@ bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned typ
         // A sample of whole chains holds fewer of the block's repeats, which
         // the segment model's item matches gain more from: the model must
         // win by the margin of cm_step_model_first().
-        if (!whole) return cm * kCmFirstMargin <= segment * (kCmFirstMargin - 1);
+        if (!whole) return cm_wins_by_margin(cm, segment);
         return cm < segment;
     }
     if (type == kStepModel) {
@@ -465,18 +482,6 @@ bool cm_step_model_may_win(BlockJob& job, const EncoderSettings& s, unsigned typ
     // (compress.cpp), so it cannot become a step-model block.
     return type == kTable && whole && (sample_cm != 0 ? sample_cm : write_cm_step_model(block).size()) + 8 < best.size();
 }
-
-// A block of more than kCmSampleSteps steps that the context-mixing step
-// model codes well below the segment model is known for one before its
-// segments are cut: on the block's whole chains spread over it (about
-// kCmSampleSteps steps, cut greedily and at the default phase: the optimal
-// segmenter's recut is most of the time there) the model must come out at
-// least 1/kCmFirstMargin smaller than the mixed segment model of the cut
-// whose plain model is smaller (chosen on glyphs-big.fc, urw-big-*.fc and
-// pages-big-grbl.fc of docs/benchmarks.md; the greedy cut alone gave
-// pages-big-grbl.fc to the model, 7.7 % larger). Such a block skips the segmenters, the
-// other models and zstd (a third to a half of -L 19's time on glyph
-// contours); others (plots, random walks, near ties) take the full choice.
 
 // Whether the segment model may code `block` (cut as `cut`) smaller than a
 // table block: it does on the block's sample (spread_chains).
@@ -691,7 +696,7 @@ bool cm_step_model_first(const Block& block, std::uint64_t steps, const EncoderS
     // known, is not made again)
     const std::size_t cm = sample_cm && *sample_cm != 0 ? *sample_cm : write_cm_step_model(sample).size();
     if (sample_cm) *sample_cm = cm;
-    return cm != 0 && cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
+    return cm != 0 && cm_wins_by_margin(cm, mixed);
 }
 
 // A first block of at most kThoroughSampleSteps steps is the profiles'
@@ -794,7 +799,7 @@ bool cm_small_first(const Block& first, std::uint64_t steps, EncoderSettings& s,
     bool take = cm != 0 && cm * kCmPlainGain <= plain * (kCmPlainGain - 1);
     if (!take && cm != 0) {
         const std::size_t mixed = write_segment_model(first, guess, guess_cut, nullptr, false, true).size();
-        take = cm * kCmFirstMargin <= mixed * (kCmFirstMargin - 1);
+        take = cm_wins_by_margin(cm, mixed);
     }
     s.cm_first_chains = first.chains.size();
     s.cm_first_steps = steps;

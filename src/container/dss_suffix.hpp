@@ -44,12 +44,14 @@ struct DssWord {
         if (l1 >= 0) return sym == l1 ? 1 : -1;
         return adjacent(l0, sym) ? 1 : -1;
     }
+    /// a x - b y at the point after the last, for a letter of value v.
+    std::int64_t next_remainder(int v) const { return a * (m.x + 1) - b * (m.y + v); }
     /// What `sym` next does: 0 ends the word, 1 keeps it a DSS of another
     /// slope, 2 keeps it within its strip.
     int status(int sym) const {
         const int v = value(sym);
         if (v < 0) return 0;
-        const std::int64_t r = a * (m.x + 1) - b * (m.y + v);
+        const std::int64_t r = next_remainder(v);
         if (r >= mu && r < mu + b) return 2;
         return r == mu - 1 || r == mu + b ? 1 : 0;
     }
@@ -59,7 +61,7 @@ struct DssWord {
     int side(int sym) const {
         const int v = value(sym);
         if (v < 0) return 2;
-        const std::int64_t r = a * (m.x + 1) - b * (m.y + v);
+        const std::int64_t r = next_remainder(v);
         const int t = (l1 - l0) & 7;  // (a run is ended by a corner only: l1 >= 0)
         return (r < mu) == (t == 1 || t == 2) ? 0 : 1;
     }
@@ -68,7 +70,7 @@ struct DssWord {
         const int v = value(sym);
         if (v < 0) return false;
         const Pt M{m.x + 1, m.y + v};
-        const std::int64_t r = a * M.x - b * M.y;
+        const std::int64_t r = next_remainder(v);
         if (r >= mu && r < mu + b) {
             if (r == mu) uq = M;
             if (r == mu + b - 1) loq = M;

@@ -179,7 +179,6 @@ int row_bits_for(std::uint64_t nsteps) {
 
 using CmCounts = StepCounts;
 
-
 // The light model (model byte 5, docs/FORMAT.md 1.11.3) keeps models
 // kLightSet of the eleven (orders 3 and 16 turns), the match input, one
 // weight set and no probability map. Chosen on glyphs-big.fc and
