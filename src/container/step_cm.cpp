@@ -7,7 +7,8 @@
 // 24 turns, the runs of the digital straight segment being drawn, the way
 // back to the chain's start, the match model's prediction; model byte 6 adds
 // the longest DSS ending at the last step and what each turn would do to it,
-// dss_suffix.hpp), their stretched probabilities mixed by online-trained
+// dss_suffix.hpp, and codes chain starts with mixed predictions, StartModel),
+// their stretched probabilities mixed by online-trained
 // mixers whose weights a small context selects, then refined by two
 // adaptive probability maps (model byte 5: two models, one mixer, no map).
 // A stretch repeated anywhere before is repeated steps, whatever cut a
@@ -211,6 +212,137 @@ inline std::size_t dss_select(const DssWord& w, int prev) {
     return static_cast<std::size_t>((dss_state(w, prev) * 3 + w.brk % 3) * 4 + std::min(len >> 1, 3));
 }
 
+
+// A weight set's output: its dot product with the inputs x (the first n
+// of N), in 1/2^16, clamped to the stretched range.
+template <int N>
+std::int32_t set_output(const std::int32_t* w, const std::int32_t* x, int n) {
+    const std::int64_t d = mix_dot<N>(w, x, n) >> 16;
+    return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
+}
+// Each weight moves by input * error * kMixRate / 2^16 (error of the
+// set's own output, 16-bit), within +-kMaxWeight. In 32 bits: |input|
+// <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
+static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
+              kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
+template <int N>
+void train_set(std::int32_t* w, const std::int32_t* x, std::int32_t out, int bit, int n) {
+    const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
+    mix_train<N>(w, x, err, kMaxWeight, n);
+}
+// The bit `want` coded (encoder), or one read (decoder), with probability
+// p (1/65536) of a 1.
+template <class I>
+[[gnu::always_inline]] inline int code_bit_p(I& io, std::int32_t p, int want) {
+    if constexpr (I::kDecode) {
+        return io.rc.decode_p(static_cast<std::uint32_t>(65536 - p));
+    } else {
+        io.rc.encode_p(static_cast<std::uint32_t>(65536 - p), want);
+        return want;
+    }
+}
+
+// Model byte 6's chain starts (docs/FORMAT.md 1.11.4): a start the match
+// does not predict is coded as its delta's y, then x, each a zero flag, a
+// sign, the magnitude's bit length less one in unary and the magnitude's
+// bits below its top, each bit mixed from seven hashed counters whose
+// contexts read the chains before (their deltas, steps and boxes: a
+// tracer's raster order and a text's advance). The step models before it
+// code each coordinate by one adaptive binarization (code_sint()).
+class StartModel {
+public:
+    static constexpr int kCtx = 7;
+    // Before a chain's start: what the chain before it was, its delta `d`
+    // (for the first chain of a block all zero).
+    struct Before {
+        Point d{}, d2{};          // the last two chains' start deltas
+        std::uint64_t steps = 0;  // the last chain's steps
+        std::uint64_t w = 0, h = 0;  // its box's width and height
+    };
+
+    explicit StartModel(std::uint64_t nchains)
+        : bits_(std::clamp(bit_length(nchains) + 5, 10, 16)), t_(std::size_t{1} << bits_, kCounterInit) {
+        for (auto& w : weights_) w = kInitWeight / 2;  // (eight inputs: their sum about one input at first)
+    }
+
+    // Codes `want` (the encoder's delta; the decoder's is ignored).
+    template <class I>
+    Point code(I& io, const Before& b, const Point& want) {
+        Point d{};
+        d[1] = code_axis(io, 1, b, 0, want[1]);
+        d[0] = code_axis(io, 0, b, d[1], want[0]);
+        return d;
+    }
+
+private:
+    // A value's class: 0, else sign and bit length (cap 15).
+    static std::uint64_t cls(std::int64_t v) {
+        if (v == 0) return 0;
+        const std::uint64_t m = v < 0 ? 0 - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+        return (v < 0 ? 32u : 16u) + static_cast<std::uint64_t>(std::min(bit_length(m), 15));
+    }
+    static std::uint64_t bl(std::uint64_t v, int cap) { return static_cast<std::uint64_t>(std::min(bit_length(v), cap)); }
+
+    template <class I>
+    std::int64_t code_axis(I& io, int axis, const Before& b, std::int64_t dy, std::int64_t want) {
+        const std::uint64_t pd = cls(b.d[static_cast<std::size_t>(axis)]), pd2 = cls(b.d2[static_cast<std::size_t>(axis)]);
+        const std::uint64_t w = bl(b.w, 7), h = bl(b.h, 7);
+        std::array<std::uint64_t, kCtx> v = {0, pd, w * 8 + h, bl(b.steps, 12), (cls(b.d[0]) * 48 + cls(b.d[1])) * 48 + pd2, 0, 0};
+        if (axis == 0) {
+            v[5] = cls(dy) * 48 + pd;
+            v[6] = cls(dy) * 8 + w;
+        } else {
+            v[5] = pd * 8 + h;
+            v[6] = pd * 48 + pd2;
+        }
+        for (int i = 0; i < kCtx; ++i)
+            base_[static_cast<std::size_t>(i)] = hash_ctx(16 + axis * kCtx + i, v[static_cast<std::size_t>(i)]);
+        axis_ = axis;
+        const std::uint64_t mag = want < 0 ? 0 - static_cast<std::uint64_t>(want) : static_cast<std::uint64_t>(want);
+        if (!bit(io, 0, 0, want != 0)) return 0;
+        const int neg = bit(io, 1, 1, want < 0);
+        const int k = I::kDecode ? 0 : bit_length(mag) - 1;
+        int got = 0;
+        while (bit(io, 2 + std::min(got, 23), 2 + std::min(got, 11), got < k)) {
+            if (++got > 63) {
+                io.failed = true;
+                return 0;
+            }
+        }
+        std::uint64_t m = 1;
+        for (int j = 0; j < got; ++j) {
+            const int dc = 26 + std::min(got, 23) * 8 + std::min(j, 7);
+            m = (m << 1) | static_cast<std::uint64_t>(bit(io, dc, 14 + std::min(j, 7), static_cast<int>((mag >> (got - 1 - j)) & 1u)));
+        }
+        return static_cast<std::int64_t>(neg ? 0 - m : m);
+    }
+
+    // One mixed bit: decision `dc` (its counters), weight set `set` of the axis.
+    template <class I>
+    int bit(I& io, int dc, int set, int want) {
+        std::array<std::uint32_t*, kCtx> c{};
+        std::array<std::int32_t, 8> x{};
+        for (int i = 0; i < kCtx; ++i) {
+            const std::uint64_t hh = ctx_join(base_[static_cast<std::size_t>(i)], static_cast<std::uint64_t>(dc)) * 0x9E3779B97F4A7C15ull;
+            c[static_cast<std::size_t>(i)] = &t_[static_cast<std::size_t>(hh >> (64 - bits_))];
+            x[static_cast<std::size_t>(i)] = stretch(counter_p16(*c[static_cast<std::size_t>(i)]));
+        }
+        x[kCtx] = 256;
+        std::int32_t* wt = &weights_[static_cast<std::size_t>(axis_ * 22 + set) * 8];
+        const std::int32_t s = set_output<8>(wt, x.data(), 8);
+        const int b = code_bit_p(io, std::clamp(mixdetail::squash_within(s), 32, 65535 - 32), want);
+        train_set<8>(wt, x.data(), mixdetail::squash_within(s), b, 8);
+        for (auto* e : c) counter_update(*e, b);
+        return b;
+    }
+
+    int bits_;
+    std::vector<std::uint32_t> t_;
+    std::array<std::int32_t, 2 * 22 * 8> weights_;
+    std::array<std::uint64_t, kCtx> base_{};
+    int axis_ = 0;
+};
+
 template <class Io, CmKind K>
 class CmStepCoder : public StepCoderShell<CmStepCoder<Io, K>, Io> {
     friend class StepCoderShell<CmStepCoder<Io, K>, Io>;
@@ -223,18 +355,32 @@ class CmStepCoder : public StepCoderShell<CmStepCoder<Io, K>, Io> {
     static constexpr std::size_t kSets = Light ? kNodes * 7 : kNodes * 7 + kNodes * 64 + (Dss ? kNodes * kDssSets : 0);
 
 public:
-    CmStepCoder(Io& io, std::uint64_t nsteps, StepHistory* shared)
-        : io_(io), rows_(row_bits_for(nsteps)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
-          own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_) {
+    CmStepCoder(Io& io, const CmCounts& counts, StepHistory* shared)
+        : io_(io), rows_(row_bits_for(counts.nsteps)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
+          own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_),
+          starts_(Dss ? std::make_unique<StartModel>(counts.nchains) : nullptr) {
         for (auto& r : match_)
             for (auto& v : r) v = kCounterInit;
     }
 
     Point start(const Point& want) {
-        w_.start_chain();
-        if constexpr (Dss) dss_.start_chain();
         ahead_sym_ = -1;
-        return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
+        if constexpr (Dss) {
+            before_.steps = w_.in_chain;  // (the chain before)
+            before_.w = static_cast<std::uint64_t>(box_[1] - box_[0]);
+            before_.h = static_cast<std::uint64_t>(box_[3] - box_[2]);
+            box_ = {};
+            w_.start_chain();
+            dss_.start_chain();
+            const Point d = code_step_start_with(io_, h_, m_, start_hit_, true, want,
+                                                 [&](Io& io) { return starts_->code(io, before_, want); });
+            before_.d2 = before_.d;
+            before_.d = d;
+            return d;
+        } else {
+            w_.start_chain();
+            return code_step_start(io_, h_, m_, start_, start_hit_, true, want);
+        }
     }
 
 private:
@@ -310,14 +456,7 @@ private:
             const std::int32_t a2 = apm2_.refine(s, row2);
             p = (a1 + a2) >> 1;
         }
-        p = std::clamp(p, 32, 65535 - 32);
-        int bit;
-        if constexpr (I::kDecode) {
-            bit = io.rc.decode_p(static_cast<std::uint32_t>(65536 - p));
-        } else {
-            io.rc.encode_p(static_cast<std::uint32_t>(65536 - p), want);
-            bit = want;
-        }
+        const int bit = code_bit_p(io, std::clamp(p, 32, 65535 - 32), want);
         train(w1, x, mixdetail::squash_within(s1), bit);
         if constexpr (!Light) {
             train(w2, x, mixdetail::squash_within(s2), bit);
@@ -342,17 +481,10 @@ private:
     }
 
     static std::int32_t dot(const std::int32_t* w, const std::array<std::int32_t, kStride>& x) {
-        const std::int64_t d = mix_dot<kStride>(w, x.data(), kIn) >> 16;
-        return static_cast<std::int32_t>(std::clamp<std::int64_t>(d, -2047, 2047));
+        return set_output<kStride>(w, x.data(), kIn);
     }
-    // Each weight moves by input * error * kMixRate / 2^16 (error of the
-    // mixer's own output, 16-bit), within +-kMaxWeight. In 32 bits: |input|
-    // <= 2047 and |error| < 2^16 * kMixRate, so the product stays below 2^31.
-    static_assert(2047 * (std::int64_t{65536} * kMixRate) < (std::int64_t{1} << 31) &&
-                  kMaxWeight + ((2047 * (std::int64_t{65536} * kMixRate)) >> 16) < (std::int64_t{1} << 31));
     static void train(std::int32_t* w, const std::array<std::int32_t, kStride>& x, std::int32_t out, int bit) {
-        const std::int32_t err = ((bit << 16) - out) * static_cast<std::int32_t>(kMixRate);
-        mix_train<kStride>(w, x.data(), err, kMaxWeight, kIn);
+        train_set<kStride>(w, x.data(), out, bit, kIn);
     }
 
     // The hashed contexts of a step (docs/FORMAT.md 1.11.2) after the turns
@@ -470,7 +602,10 @@ private:
         turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
         if constexpr (!Light) w_.step(sym, turn);  // (the light models do not read the walk)
-        if constexpr (Dss) dss_.push(sym);
+        if constexpr (Dss) {
+            dss_.push(sym);
+            box_ = {std::min(box_[0], w_.dx), std::max(box_[1], w_.dx), std::min(box_[2], w_.dy), std::max(box_[3], w_.dy)};
+        }
         prev_ = sym;
     }
     const DssWord& dss_word() const {
@@ -502,6 +637,9 @@ private:
     StepWalk w_;
     DssSuffix dss_;           // model byte 6 only
     std::size_t dss_sel_ = 0;  // its weight set's index (dss_select())
+    std::unique_ptr<StartModel> starts_;  // model byte 6 only
+    StartModel::Before before_;           // the chain before, for starts_
+    std::array<std::int64_t, 4> box_{};   // the chain's box so far: x min, max, y min, max (from its start)
 };
 
 }  // namespace
@@ -520,7 +658,7 @@ std::string write_cm(const Block& block, const WindowView* window) {
     put_varint(out, c.nsteps);
     put_layout(out, block.layout);
     EncIo io;
-    auto coder = std::make_unique<CmStepCoder<EncIo, K>>(io, c.nsteps, nullptr);
+    auto coder = std::make_unique<CmStepCoder<EncIo, K>>(io, c, nullptr);
     if (window) coder->prime(*window);
     if (!encode_step_chains(*coder, block, c)) return {};
     out += io.rc.finish();
@@ -563,14 +701,14 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
     };
     StepHistory* shared = window ? running : nullptr;
     if (kind == kMixedStepCmLight) {
-        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::light>>(io, c.nsteps, shared);
+        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::light>>(io, c, shared);
         return run(*coder);
     }
     if (kind == kMixedStepCmDss) {
-        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::dss>>(io, c.nsteps, shared);
+        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::dss>>(io, c, shared);
         return run(*coder);
     }
-    auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::full>>(io, c.nsteps, shared);
+    auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::full>>(io, c, shared);
     return run(*coder);
 }
 

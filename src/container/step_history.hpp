@@ -267,10 +267,10 @@ struct StepMatch {
 
 // A chain's start delta (version 2 of the step model, FORMAT.md 1.8): a hit
 // bit when the match points at a recorded chain start (its delta
-// predicted), else each coordinate by `start`; the start is recorded.
-template <class Io>
-Point code_step_start(Io& io, StepHistory& h, const StepMatch& m, UIntModel (&start)[2], Prob (&start_hit)[24],
-                      bool predict_starts, const Point& want) {
+// predicted), else the delta by `miss(io)`; the start is recorded.
+template <class Io, class Miss>
+Point code_step_start_with(Io& io, StepHistory& h, const StepMatch& m, Prob (&start_hit)[24], bool predict_starts,
+                           const Point& want, Miss&& miss) {
     Point d{};
     bool hit = false;
     if (predict_starts && m.ptr >= 0) {
@@ -280,12 +280,19 @@ Point code_step_start(Io& io, StepHistory& h, const StepMatch& m, UIntModel (&st
             if (hit) d = *pred;
         }
     }
-    if (!hit)
-        for (int i = 0; i < 2; ++i) {
-            d[i] = code_sint(io, start[i], want[i]);  // the rebuilt start is range-checked
-        }
+    if (!hit) d = miss(io);
     if (predict_starts) h.note_start(d);
     return d;
+}
+// The same with each coordinate of a missed delta by `start`.
+template <class Io>
+Point code_step_start(Io& io, StepHistory& h, const StepMatch& m, UIntModel (&start)[2], Prob (&start_hit)[24],
+                      bool predict_starts, const Point& want) {
+    return code_step_start_with(io, h, m, start_hit, predict_starts, want, [&](Io& in) {
+        Point d{};
+        for (int i = 0; i < 2; ++i) d[i] = code_sint(in, start[i], want[i]);  // the rebuilt start is range-checked
+        return d;
+    });
 }
 
 // Where a step coder is in its chain and in the runs of one direction (the
