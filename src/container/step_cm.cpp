@@ -104,7 +104,9 @@ public:
     void prefetch(std::uint64_t h) const { __builtin_prefetch(&rows_[index(h)], 1); }
     // The row of context hash `h`: the pair's row with its check, else the
     // one used less, emptied for it (the other's use count decays).
-    Row* find(std::uint64_t h) {
+    // (Always inline: once out of line, as GCC chose when the coder grew,
+    // the decoder ran 2 % more instructions.)
+    [[gnu::always_inline]] Row* find(std::uint64_t h) {
         const std::size_t i = index(h);
         const std::uint16_t check = static_cast<std::uint16_t>(((h >> 8) & 0xFFFFu) | 1u);
         Row* a = &rows_[i];
@@ -597,7 +599,7 @@ private:
         ahead_sym_ = ends_word ? -1 : sym;
     }
 
-    void note_turn(int sym) {
+    [[gnu::always_inline]] void note_turn(int sym) {
         const auto turn = static_cast<unsigned>((sym - prev_) & 7);
         turns_hi_ = (turns_hi_ << 3) | ((turns_ >> 60) & 7);  // the turn leaving turns_
         turns_ = (turns_ << 3) | turn;
