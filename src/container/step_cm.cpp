@@ -7,7 +7,8 @@
 // 24 turns, the runs of the digital straight segment being drawn, the way
 // back to the chain's start, the match model's prediction; model byte 6 adds
 // the longest DSS ending at the last step and what each turn would do to it,
-// dss_suffix.hpp, and codes chain starts with mixed predictions, StartModel),
+// dss_suffix.hpp, with fast-adapting counters of its state, and codes chain
+// starts with mixed predictions, StartModel),
 // their stretched probabilities mixed by online-trained
 // mixers whose weights a small context selects, then refined by two
 // adaptive probability maps (model byte 5: two models, one mixer, no map).
@@ -72,13 +73,19 @@ constexpr mixdetail::RecipTable<kCountLimit + 1> kRecip{};
 constexpr std::uint32_t kCounterInit = std::uint32_t{1} << 31;
 
 [[gnu::always_inline]] inline std::uint32_t counter_p16(std::uint32_t e) { return e >> 16; }
+// After bit `bit`: rate 1/(n + 1.5), the count n stopping at `Limit`.
+template <std::uint32_t Limit = kCountLimit>
 [[gnu::always_inline]] inline void counter_update(std::uint32_t& e, int bit) {
+    static_assert(Limit <= kCountLimit);
     const std::uint32_t n = e & 1023u;
     const std::int32_t p = static_cast<std::int32_t>(e >> 10);
     const std::int32_t target = bit ? (1 << 22) - 1 : 0;
     const std::int32_t q = p + static_cast<std::int32_t>((static_cast<std::int64_t>(target - p) * kRecip.v[n]) >> 16);
-    e = (static_cast<std::uint32_t>(q) << 10) | (n < kCountLimit ? n + 1 : n);
+    e = (static_cast<std::uint32_t>(q) << 10) | (n < Limit ? n + 1 : n);
 }
+// Model byte 6's fast counters stop counting at 8 (their rate settles at
+// 1/9.5): next to the slow hashed counters they follow a drift.
+constexpr std::uint32_t kFastLimit = 8;
 
 // One hashed context's counters for the nodes of a step, with a check of
 // the context (0: empty row) and a use count for replacement.
@@ -350,7 +357,9 @@ class CmStepCoder : public StepCoderShell<CmStepCoder<Io, K>, Io> {
     friend class StepCoderShell<CmStepCoder<Io, K>, Io>;
     static constexpr bool Light = K == CmKind::light, Dss = K == CmKind::dss;
     static constexpr int kM = Light ? static_cast<int>(kLightSet.size()) : Dss ? kModels + 2 : kModels;  // hashed models used
-    static constexpr int kIn = kM + 2;
+    // Inputs: the hashed models, the match, the bias and (model byte 6) the
+    // fast counter.
+    static constexpr int kIn = kM + 2 + (Dss ? 1 : 0);
     // A weight set's stride: the inputs rounded up to eight for the AVX2
     // loops (the inputs past kIn are 0, so their weights never move).
     static constexpr int kStride = Light ? kIn : (kIn + 7) / 8 * 8;
@@ -394,7 +403,10 @@ private:
             sym = kEndSymbol;  // forced: no bits
         } else {
             const int pred = m_.predicted(h_);
-            if constexpr (Dss) dss_sel_ = dss_select(dss_.word(), prev_);
+            if constexpr (Dss) {
+                dss_sel_ = dss_select(dss_.word(), prev_);
+                fast_row_ = &fast_[(dss_sel_ * 8 + static_cast<std::size_t>(prev_)) * kNodes];
+            }
             contexts(pred);
             if constexpr (I::kDecode) prefetch_after(prev_);
             else if (want != kEndSymbol) prefetch_after(want);
@@ -441,6 +453,9 @@ private:
             x[kM] = 0;
         }
         x[kM + 1] = 256;
+        // Model byte 6: a fast counter of the DSS weight set's selector and
+        // the last code.
+        if constexpr (Dss) x[kM + 2] = stretch(counter_p16(fast_row_[n]));
         const int mstate = expect < 0 ? 0 : 1 + expect + 2 * std::min(lb >> 3, 2);
         std::int32_t* w1 = weight_set(static_cast<std::size_t>(n * 7 + mstate));
         std::int32_t* w2 = Light ? w1 : weight_set(static_cast<std::size_t>(kNodes * 7 + n * 64 + (turns_ & 63)));
@@ -468,6 +483,7 @@ private:
         }
         for (int k = 0; k < kM; ++k) counter_update(row_[static_cast<std::size_t>(k)]->p[n], bit);
         if (mm) counter_update(*mm, bit == expect);
+        if constexpr (Dss) counter_update<kFastLimit>(fast_row_[n], bit);
         return bit;
     }
 
@@ -640,6 +656,8 @@ private:
     DssSuffix dss_;           // model byte 6 only
     std::size_t dss_sel_ = 0;  // its weight set's index (dss_select())
     std::unique_ptr<StartModel> starts_;  // model byte 6 only
+    std::vector<std::uint32_t> fast_ = std::vector<std::uint32_t>(Dss ? kDssSets * 8 * kNodes : 0, kCounterInit);
+    std::uint32_t* fast_row_ = nullptr;  // the step's fast counters (one per node)
     StartModel::Before before_;           // the chain before, for starts_
     std::array<std::int64_t, 4> box_{};   // the chain's box so far: x min, max, y min, max (from its start)
 };
