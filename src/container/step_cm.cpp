@@ -30,6 +30,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <vector>
 
 #include "dss_suffix.hpp"
 #include "mix.hpp"
@@ -261,8 +262,8 @@ template <class I>
 class StartModel {
 public:
     static constexpr int kCtx = 7;
-    // Before a chain's start: what the chain before it was, its delta `d`
-    // (for the first chain of a block all zero).
+    // What the chains before a start were (all zero before a block's first
+    // chain).
     struct Before {
         Point d{}, d2{};          // the last two chains' start deltas
         std::uint64_t steps = 0;  // the last chain's steps
@@ -338,9 +339,9 @@ private:
         }
         x[kCtx] = 256;
         std::int32_t* wt = &weights_[static_cast<std::size_t>(axis_ * 22 + set) * 8];
-        const std::int32_t s = set_output<8>(wt, x.data(), 8);
-        const int b = code_bit_p(io, std::clamp(mixdetail::squash_within(s), 32, 65535 - 32), want);
-        train_set<8>(wt, x.data(), mixdetail::squash_within(s), b, 8);
+        const std::int32_t p = mixdetail::squash_within(set_output<8>(wt, x.data(), 8));
+        const int b = code_bit_p(io, std::clamp(p, 32, 65535 - 32), want);
+        train_set<8>(wt, x.data(), p, b, 8);
         for (auto* e : c) counter_update(*e, b);
         return b;
     }
