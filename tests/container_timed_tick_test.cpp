@@ -14,6 +14,7 @@
 #include "../src/container/block_codec.hpp"
 #include "../src/container/timed_tick.hpp"
 #include "stepzip/container.hpp"
+#include "stepzip/document.hpp"
 #include "support/block_records.hpp"
 #include "support/files.hpp"
 #include "support/proved.hpp"
@@ -97,7 +98,8 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
             }
             if (variant == 2) b.layout = std::string("\x01\x05\x02\x07\x01", 5);  // opaque to the block
             for (const bool irq : {false, true})
-                for (const unsigned flags : {0u, stz::kTickRestart, stz::kTickGuess, stz::kTickFlags})
+                for (const unsigned flags : {0u, stz::kTickRestart, stz::kTickGuess, stz::kTickGuided,
+                                             stz::kTickRestart | stz::kTickGuided, stz::kTickFlags})
                     for (const TickCoding coding : kCodings) {
                         const Block out = round_trip(b, coding, irq, flags);
                         EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " coding "
@@ -189,10 +191,30 @@ TEST(TickBlock, LinesThatGuessTheirRateCodeARampSmaller) {
                 return (irq ? stz::write_interrupt_block(b, coding, flags) : stz::write_tick_block(b, coding, flags)).size();
             };
             // 5.8-6.3 % here (without the guess's information: 0 or larger).
-            EXPECT_LT(size(stz::kTickFlags) * 100, size(stz::kTickRestart) * 97)
+            EXPECT_LT(size(stz::kTickRestart | stz::kTickGuess) * 100, size(stz::kTickRestart) * 97)
                 << "coding " << static_cast<unsigned>(coding) << " irq " << irq;
         }
     // On the plain coding the flag is not written: the same bytes.
+    EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickFlags),
+              stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart));
+}
+
+// The guided flag: the guessed letter, the admitted sets and the step
+// against the rate's trend choose the mixers' weight sets and a second
+// map's row, and the block's mixers and maps learn faster. Both blocks
+// decode and code the ramp at least 5 % smaller with it, under both mixed
+// codings (9-10 % here; by the faster rates alone, without guide(), 0-0.5 %).
+TEST(TickBlock, GuidedMixingCodesARampSmaller) {
+    const Block b = ramp_block();
+    for (const TickCoding coding : {TickCoding::mixed, TickCoding::mixed_sure})
+        for (const bool irq : {false, true}) {
+            const auto size = [&](unsigned flags) {
+                return (irq ? stz::write_interrupt_block(b, coding, flags) : stz::write_tick_block(b, coding, flags)).size();
+            };
+            const std::size_t guided = size(stz::kTickFlags), unguided = size(stz::kTickRestart | stz::kTickGuess);
+            EXPECT_LT(guided * 100, unguided * 95) << "coding " << static_cast<unsigned>(coding) << " irq " << irq
+                                                    << ": " << guided << " against " << unguided;
+        }
     EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickFlags),
               stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart));
 }
@@ -381,8 +403,9 @@ TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
     Block out;
     stz::BlockCounts counts;
     for (const bool irq : {false, true}) {  // the interrupt block's header reads the same
-        // Coding 3, the plain coding with the guess flag, a flag above it.
-        for (const unsigned byte : {3u, stz::kTickGuess, stz::kTickRestart | stz::kTickGuess, 16u | 2u}) {
+        // Coding 3, the plain coding with the guess or guided flag, a flag above them.
+        for (const unsigned byte : {3u, stz::kTickGuess, stz::kTickRestart | stz::kTickGuess, stz::kTickGuided,
+                                    stz::kTickRestart | stz::kTickGuided, 32u | 2u}) {
             std::string bad = irq ? stz::write_interrupt_block(b) : payload;
             bad[1] = static_cast<char>(byte);
             auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");
@@ -544,14 +567,15 @@ TEST(InterruptBlock, EncoderPicksItOnASmoothedLogAndTheFrameRoundTrips) {
     }
 }
 
-// The thorough levels code a timed block both as a tick block and as an
-// interrupt block, the smaller kept; the default level takes the one that
-// the block's first ticks chose. On the S-curve log of corpora/timed the
-// first ticks choose the larger: -L 19 writes the other, smaller.
-TEST(InterruptBlock, ThoroughLevelsKeepTheSmallerOfTheTwo) {
+// The mixed codings take the interrupt block unless its plain prefix is
+// over 1/32 larger than the tick block's (the guided mixing's crossing
+// contexts favour it). On the S-curve log of corpora/timed the plain
+// interrupt block is larger (0.8 %), the mixed one smaller (4.5 %): -L 3
+// writes it, the bytes -L 19 keeps after coding both whole. (Where the
+// default's choice loses, -L 19 keeps the other: tests/cli/timed.sh.)
+TEST(InterruptBlock, MixedCodingsTakeTheInterruptBlockWithinAMargin) {
     const std::string log = test::corpus("timed/heldout-scurve.steps");
     std::string payload[2];
-    unsigned sub[2] = {};
     for (int i = 0; i < 2; ++i) {
         CompressOptions opt;
         opt.format = InputFormat::timed;
@@ -562,10 +586,19 @@ TEST(InterruptBlock, ThoroughLevelsKeepTheSmallerOfTheTwo) {
         ASSERT_EQ(records.size(), 1u);
         ASSERT_EQ(records[0].type, stz::kExtended);
         payload[i] = std::string(records[0].payload);
-        sub[i] = static_cast<unsigned char>(payload[i][0]);
+        EXPECT_EQ(static_cast<unsigned char>(payload[i][0]), stz::kInterruptSubtype) << opt.level;
     }
-    EXPECT_NE(sub[0], sub[1]);
-    EXPECT_LT(payload[1].size(), payload[0].size());
+    EXPECT_EQ(payload[0], payload[1]);
+    // The plain codings (the check's) have the tick block smaller.
+    auto chains = read_chains(InputFormat::timed, log);
+    ASSERT_TRUE(chains.ok()) << chains.error().message;
+    ASSERT_FALSE(chains->empty());
+    Block b;
+    b.axes = chains->front().axes;
+    b.chains = std::move(*chains);
+    const std::size_t tick = stz::write_tick_block(b).size(), irq = stz::write_interrupt_block(b).size();
+    EXPECT_LT(tick, irq);
+    EXPECT_LE(irq * 32, tick * 33);
 }
 
 }  // namespace

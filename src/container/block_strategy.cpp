@@ -631,6 +631,14 @@ void timed_choice(BlockJob& job, const EncoderSettings& s, const std::vector<Cut
 // (sample_of()) hold too few steps, and the segment model, which learns
 // faster, was the smaller on most of them.
 constexpr std::uint64_t kTimedPrefix = std::uint64_t{1} << 18;
+// The mixed codings favour the interrupt block: its guided mixing has the
+// crossing contexts, which the tick block lacks, and on the eleven timed
+// streams the whole interrupt block coded mixed came to 0.6-5.2 % less,
+// against the tick block, than coded plain. So the mixed codings take the
+// interrupt block unless its plain prefix is over 1/32 larger than the
+// tick block's (docs/benchmarks.md "Timed streams: the interrupt block
+// when mixed"; the plain codings keep the smaller plain one).
+constexpr std::size_t kMixedIrqMargin = 32;
 
 TimedCheck timed_check(const Block& block, const EncoderSettings& s) {
     TimedCheck c;
@@ -640,6 +648,7 @@ TimedCheck timed_check(const Block& block, const EncoderSettings& s) {
     const std::string tick = write_tick_block(sample), irq = write_interrupt_block(sample);
     if (tick.empty() || irq.empty()) return c;
     c.irq = irq.size() < tick.size();
+    c.irq_mixed = irq.size() * kMixedIrqMargin <= tick.size() * (kMixedIrqMargin + 1);
     if (whole) c.plain = c.irq ? irq : tick;
     Cut segs;
     SegmentStats stats;
@@ -1364,8 +1373,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         }
     }
     // Timed frames at every level: the tick block (type 7 subtype 2) or
-    // the interrupt block (subtype 1), the one the check found smaller,
-    // kept when smaller than the segment-based blocks; from kMixedTickLevel
+    // the interrupt block (subtype 1), the one the check chose (the smaller
+    // plain one; for the mixed codings, kMixedIrqMargin), kept when smaller
+    // than the segment-based blocks; from kMixedTickLevel
     // with mixed predictions but for the sure decisions (coding 2), 13-23 %
     // smaller than the plain coding on every block of the timed streams
     // measured and about half as fast to decode (docs/benchmarks.md "Timed
@@ -1376,7 +1386,8 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         auto write = [&](TickCoding c, bool irq) {
             return irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
         };
-        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding, timed.irq);
+        const bool use_irq = coding == TickCoding::plain ? timed.irq : timed.irq_mixed;
+        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding, use_irq);
         if (coding != TickCoding::plain && (tick.empty() || tick.size() > kMaxBlockPayload))
             tick = write(TickCoding::plain, timed.irq);
         // The thorough levels code the other one whole too, the smaller
@@ -1384,7 +1395,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         // blocks of the eleven timed streams of docs/benchmarks.md (1.9-3.6
         // % larger; "Timed streams: both blocks at the thorough levels").
         if (s.thorough && !tick.empty()) {
-            const std::string other = write(coding, !timed.irq);
+            const std::string other = write(coding, !use_irq);
             if (!other.empty() && other.size() < tick.size()) tick = other;
         }
         if (!tick.empty() && tick.size() <= kMaxBlockPayload &&

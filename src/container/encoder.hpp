@@ -47,7 +47,8 @@ class CutCache;
 /// is the smaller.
 struct TimedCheck {
     bool segments = true;
-    bool irq = false;
+    bool irq = false;        ///< the interrupt block for the plain coding (the smaller one plain)
+    bool irq_mixed = false;  ///< the interrupt block for the mixed codings (kMixedIrqMargin)
     std::string plain;  ///< the smaller plain payload, when the check coded the whole block
 };
 

@@ -49,6 +49,17 @@ inline constexpr int kMixSets = 256;
 /// Rows of the adaptive probability map (by slot).
 inline constexpr int kApmRows = 1 << 12;
 
+/// A predictor steered by its coder (the tick block's guided flag,
+/// docs/FORMAT.md 1.13 "Guided mixing"): `rows` rows of a second adaptive
+/// probability map whose row the coder names per decision (guide()), and
+/// the learning rates of the mixers and of both maps. The default is the
+/// unguided predictor of every other coder.
+struct MixGuide {
+    int rows = 0;
+    std::int64_t rate = 3;  // a weight moves by input * error * rate / 2^16
+    int apm_rate = 7;       // a map's point moves by 1/2^apm_rate of its error
+};
+
 namespace mixdetail {
 // squash(x) = 65536 / (1 + e^(-x/256)) at x = -2048, -1920, ..., 2048.
 inline constexpr std::int32_t kSquashPoints[33] = {
@@ -278,7 +289,10 @@ public:
     /// `models` (kMixBaseModels or kMixMaxModels) hashed context models;
     /// `base`: the coder's table of primary contexts (a decision's slot is
     /// its primary context's index in it).
-    MixPredictor(const Prob* base, int models) : n_(models), base_(base), apm_(static_cast<std::size_t>(kApmRows) * 33) {
+    /// `guide`: MixGuide's rows and rates.
+    MixPredictor(const Prob* base, int models, const MixGuide& guide = {})
+        : n_(models), rate_(guide.rate), apm_rate_(guide.apm_rate), base_(base),
+          apm_(static_cast<std::size_t>(kApmRows + guide.rows) * 33), rows2_(guide.rows) {
         mixdetail::HashedTables& shared = mixdetail::thread_tables();
         if (shared.busy) {
             own_ = std::make_unique<mixdetail::HashedTables>();
@@ -296,7 +310,7 @@ public:
         }
         // Every row of the map starts the same.
         for (int j = 0; j < 33; ++j) apm_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
-        for (std::size_t r = 1; r < static_cast<std::size_t>(kApmRows); ++r)
+        for (std::size_t r = 1; r < static_cast<std::size_t>(kApmRows + rows2_); ++r)
             std::memcpy(&apm_[r * 33], &apm_[0], 33 * sizeof(std::uint16_t));
     }
     MixPredictor(const MixPredictor&) = delete;
@@ -310,8 +324,21 @@ public:
     void set_context(int k, std::uint64_t v) noexcept {
         hash_[static_cast<std::size_t>(k)] = (v + static_cast<std::uint64_t>(k + 1)) * kHashA;
     }
-    /// The field of the next decisions (0..15): selects the weight set.
-    void select(int field) noexcept { field_ = field & 15; }
+    /// The field of the next decisions (0..15): selects the weight set;
+    /// ends a guide().
+    void select(int field) noexcept {
+        field_ = field & 15;
+        set1_ = set2_ = row2_ = -1;
+    }
+    /// Until the next select(): mixer 1 mixes with weight set `set1` and
+    /// mixer 2 with `set2` (each 0..kMixSets-1 of its mixer) in place of
+    /// the field's sets chosen by the slot and by the confidence, and row
+    /// `row` (0..MixGuide::rows-1) of the second map refines the mix too.
+    void guide(int set1, int set2, int row) noexcept {
+        set1_ = set1 & (kMixSets - 1);
+        set2_ = set2 & (kMixSets - 1);
+        row2_ = rows2_ > 0 ? row % rows2_ : -1;
+    }
 
     /// Probability (1..65535) that the decision of primary context `pr` is 1.
     [[gnu::always_inline]] std::uint32_t predict(const Prob& pr) noexcept {
@@ -342,8 +369,11 @@ private:
         }
         x_[static_cast<std::size_t>(N) + 1] = 256;
         // Two mixers, each its weight set's dot product; their outputs averaged.
-        w1_ = &weights_[(static_cast<std::size_t>(field_) * 16 + low) * kInputs];
-        w2_ = &weights_[(static_cast<std::size_t>(kMixSets + field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1)) * kInputs];
+        const std::size_t set1 = set1_ >= 0 ? static_cast<std::size_t>(set1_) : static_cast<std::size_t>(field_) * 16 + low;
+        const std::size_t set2 = set2_ >= 0 ? static_cast<std::size_t>(set2_)
+                                            : static_cast<std::size_t>(field_ * 16) + static_cast<std::size_t>((x_[0] + 2048) >> 8 >> 1);
+        w1_ = &weights_[set1 * kInputs];
+        w2_ = &weights_[(kMixSets + set2) * kInputs];
         const std::int32_t s1 = dot<N>(w1_), s2 = dot<N>(w2_);
         // (dot() clamps to +-2047)
         out1_ = mixdetail::squash_within(s1);
@@ -358,6 +388,15 @@ private:
         const std::int32_t refined = (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
         apm_at_ = &row[j + (frac >> 6)];
         std::int32_t p = (mixed + 3 * refined) >> 2;
+        apm2_at_ = nullptr;
+        if (row2_ >= 0) {
+            // guide(): the second map's row, at the same points; the mix a
+            // quarter, the first map a quarter, the second a half.
+            std::uint16_t* row2 = &apm_[static_cast<std::size_t>(kApmRows + row2_) * 33];
+            const std::int32_t refined2 = (row2[j] * (128 - frac) + row2[j + 1] * frac) >> 7;
+            apm2_at_ = &row2[j + (frac >> 6)];
+            p = (mixed + refined + 2 * refined2) >> 2;
+        }
         if (p < 1) p = 1;
         if (p > 65535) p = 65535;
         return static_cast<std::uint32_t>(p);
@@ -370,7 +409,8 @@ private:
         stz::update(pr, bit);
         for (int k = 0; k < N; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
         const std::int32_t target = bit ? 65535 : 0;
-        *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> kApmRate));
+        *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> apm_rate_));
+        if (apm2_at_) *apm2_at_ = static_cast<std::uint16_t>(*apm2_at_ + ((target - *apm2_at_) >> apm_rate_));
     }
 
     // A mixer's output, stretched: the dot product of its weights (16.16
@@ -382,11 +422,11 @@ private:
         d >>= 16;
         return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
     }
-    // Each weight moves by input * error * kRate / 2^16, the error that of
+    // Each weight moves by input * error * rate_ / 2^16, the error that of
     // the mixer's own output; weights stay within +-kMaxWeight.
     template <int N>
     [[gnu::always_inline]] void train(std::int32_t* w, std::int32_t out, int bit) noexcept {
-        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * kRate;
+        const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * rate_;
         for (int k = 0; k <= N + 1; ++k) {
             std::int64_t v = w[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
             if (v > kMaxWeight) v = kMaxWeight;
@@ -401,18 +441,19 @@ private:
     static constexpr std::int32_t kPrimaryWeight = 40960;  // 0.625
     static constexpr std::int32_t kModelWeight = 12288;    // 0.1875
     static constexpr std::int32_t kMaxWeight = 1 << 22;
-    static constexpr std::int64_t kRate = 3;
-    static constexpr int kApmRate = 7;
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
     int n_;  // hashed models in use
+    std::int64_t rate_;  // MixGuide
+    int apm_rate_;
 
     const Prob* base_;
     std::unique_ptr<mixdetail::HashedTables> own_;  // when the thread's tables are taken
     mixdetail::HashedTables* store_ = nullptr;
     mixdetail::HashedProb* tables_ = nullptr;
     std::uint8_t* dirty_ = nullptr;
-    std::vector<std::uint16_t> apm_;
+    std::vector<std::uint16_t> apm_;  // kApmRows rows by slot, then MixGuide::rows for guide()
+    int rows2_;
     std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
     std::array<std::uint64_t, kMixMaxModels> hash_{};
     std::array<std::int32_t, kInputs> x_{};
@@ -421,7 +462,9 @@ private:
     std::int32_t* w2_ = nullptr;
     std::int32_t out1_ = 32768, out2_ = 32768;
     std::uint16_t* apm_at_ = nullptr;
+    std::uint16_t* apm2_at_ = nullptr;
     int field_ = 0;
+    int set1_ = -1, set2_ = -1, row2_ = -1;  // guide()
 };
 
 /// Sure decisions (the tick block's coding 2, docs/FORMAT.md 1.13): with

@@ -41,6 +41,22 @@ constexpr std::size_t kKeep = 4 * kRebuild;
 
 int clamp_int(std::int64_t v, int lo, int hi) { return static_cast<int>(std::clamp<std::int64_t>(v, lo, hi)); }
 
+/// Guided mixing (the coding flag kTickGuided): the first weight set of
+/// each mixer it picks (those of fields 4 and up, which no decision of a
+/// tick block selects), the first of mixer 2's sets by the crossing (after
+/// those by the trend, whose index tr / 4 is at most 25), the second map's
+/// rows (by the guessed letter 0..8, b 0..3, t 1..3 and the rank's 2; then
+/// by the crossing context, below 19 · 8), and the rates its predictor
+/// learns at. Chosen on the timed streams of docs/benchmarks.md "Timed
+/// streams: guided mixing".
+constexpr int kGuidedSets = 64;
+constexpr int kGuidedCrossSets = kGuidedSets + 26 * 3;
+constexpr int kGuidedRows = 9 * 4 * 4 * 2;
+constexpr MixGuide kGuide{.rows = kGuidedRows + 19 * 8, .rate = 4, .apm_rate = 6};
+static_assert(kGuidedCrossSets + 19 * 3 <= kMixSets);
+/// The predictor of a block of coding byte (or flags) `coding`.
+MixGuide mix_guide(unsigned coding) { return (coding & kTickGuided) ? kGuide : MixGuide{}; }
+
 /// A two-letter word read a letter at a time, as WordRecognizer reads it
 /// (the hull form of dss.hpp): whether a letter may follow with the word
 /// still a digital straight segment, without reading it. Lengths stay below
@@ -494,7 +510,8 @@ public:
     /// kTickGuess (mixed codings: their lines guess the next letter).
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
-          restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0) {
+          restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
+          guided_((flags & kTickGuided) != 0) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
     }
 
@@ -572,8 +589,10 @@ public:
                 // and b (which the primary context holds). The guess flag, on an
                 // interrupt block's axis that follows the leader: where in the
                 // leader's interval its Bresenham line steps (crossing()).
-                if (guessing_ && windows_ && i > 0)
-                    mix_context(io_, 4, ctx_join(ctx_join(ax, 10), crossing_context(ua, fa)));
+                const bool crossing = guessing_ && windows_ && i > 0;
+                const std::uint64_t cross = crossing ? crossing_context(ua, fa) : 0;
+                if (crossing)
+                    mix_context(io_, 4, ctx_join(ctx_join(ax, 10), cross));
                 else
                     mix_context(io_, 4, ctx_join(ctx_join(ax, 5), sure_ ? (f.breaks() << 2) | uf : (uf << 2) | static_cast<std::uint64_t>(ba)));
                 mix_context(io_, 5, ctx_join(ctx_join(ax, 6), ((bres_[ua].recent() & 0xFFu) << 1) | static_cast<std::uint64_t>(lead_step)));
@@ -582,6 +601,20 @@ public:
                 mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (guess << 4) | uf
                                                                      : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
+                if (guided_) {
+                    // The guessed letter with b picks mixer 1's weight set; the
+                    // step against the trend with t mixer 2's and the letter,
+                    // b, t and i the second map's row, or on an axis that
+                    // follows the leader of an interrupt block where its
+                    // Bresenham line crosses (d = cross >> 3) and that context.
+                    const int gb = static_cast<int>(guess) * 4 + ba;
+                    if (crossing)
+                        io_.m->guide(kGuidedSets + gb, kGuidedCrossSets + static_cast<int>(cross >> 3) * 3 + fa - 1,
+                                     kGuidedRows + static_cast<int>(cross));
+                    else
+                        io_.m->guide(kGuidedSets + gb, kGuidedSets + static_cast<int>(tr >> 2) * 3 + fa - 1,
+                                     (gb * 4 + fa) * 2 + (i > 0));
+                }
             }
             const int step = io_.bit(t_.axis(ua).step[ctx], static_cast<int>((mask >> a) & 1u));
             f.push(step, fa);
@@ -695,6 +728,7 @@ private:
     bool sure_;     // coding 2
     bool restart_;  // the coding flag kTickRestart
     bool guessing_;  // the coding flag kTickGuess
+    bool guided_;    // the coding flag kTickGuided
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -755,7 +789,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     put_layout(out, block.layout);
     const TickTablesLease tables(axes - 1);
     if (coding != TickCoding::plain) {
-        MixPredictor pred((*tables).base(), kMixMaxModels);
+        MixPredictor pred((*tables).base(), kMixMaxModels, mix_guide(flags));
         MixEncIo io;
         io.m = &pred;
         write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
@@ -802,7 +836,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     const std::size_t base = cur.pos();
     const TickTablesLease tables(std::clamp(axes - 1, 0, kMinor));
     std::unique_ptr<MixPredictor> pred;
-    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>((*tables).base(), kMixMaxModels);
+    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>((*tables).base(), kMixMaxModels, mix_guide(coding));
     Io io = [&] {
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));

@@ -39,10 +39,17 @@ inline constexpr unsigned kTickRestart = 4;
 /// and mixed contexts take the letter that rate gives next
 /// (docs/FORMAT.md 1.13, "Guess"). The blocks without it decode as before.
 inline constexpr unsigned kTickGuess = 8;
-/// The coding byte's flags the encoder sets (kTickGuess only on a mixed
-/// coding).
-inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess;
-/// The flags that may go with `coding`: the guess flag with a mixed one only.
+/// Flag of the coding byte, with a mixed coding only: each step decision's
+/// guessed letter, admitted sets and rate trend choose the mixers' weight
+/// sets and a second probability map's row, and the block's mixers and
+/// maps learn faster (docs/FORMAT.md 1.13, "Guided mixing"). The blocks
+/// without it decode as before.
+inline constexpr unsigned kTickGuided = 16;
+/// The coding byte's flags the encoder sets (kTickGuess and kTickGuided
+/// only on a mixed coding).
+inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided;
+/// The flags that may go with `coding`: the guess and guided flags with a
+/// mixed one only.
 inline constexpr unsigned tick_flags(TickCoding coding) {
     return coding == TickCoding::plain ? kTickRestart : kTickFlags;
 }
@@ -50,7 +57,8 @@ inline constexpr unsigned tick_flags(TickCoding coding) {
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `flags`: of kTickRestart and kTickGuess (dropped on the plain coding).
+/// `flags`: of kTickRestart, kTickGuess and kTickGuided (the last two
+/// dropped on the plain coding).
 std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md

@@ -427,6 +427,10 @@ files.update({
 files.update({
     'v2_tick_guess_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 8))),
 })
+# The guided bit (16, "Guided mixing") likewise.
+files.update({
+    'v2_tick_guided_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 16))),
+})
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
 rcm, r_payload = first_extended_block('raw_cm.hpgl.stz', 3, 0)
