@@ -382,19 +382,13 @@ private:
         const std::int32_t mixed = mixdetail::squash_within(s);
         // Adaptive probability map on the slot: interpolated between the two
         // nearest of 33 points; the nearer one is trained.
-        const std::int32_t pos = s + 2048;
-        const std::int32_t j = pos >> 7, frac = pos & 127;
-        std::uint16_t* row = &apm_[static_cast<std::size_t>(slot & (kApmRows - 1)) * 33];
-        const std::int32_t refined = (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
-        apm_at_ = &row[j + (frac >> 6)];
+        const std::int32_t refined = map_refine(static_cast<std::size_t>(slot & (kApmRows - 1)), s, apm_at_);
         std::int32_t p = (mixed + 3 * refined) >> 2;
         apm2_at_ = nullptr;
         if (row2_ >= 0) {
             // guide(): the second map's row, at the same points; the mix a
             // quarter, the first map a quarter, the second a half.
-            std::uint16_t* row2 = &apm_[static_cast<std::size_t>(kApmRows + row2_) * 33];
-            const std::int32_t refined2 = (row2[j] * (128 - frac) + row2[j + 1] * frac) >> 7;
-            apm2_at_ = &row2[j + (frac >> 6)];
+            const std::int32_t refined2 = map_refine(static_cast<std::size_t>(kApmRows + row2_), s, apm2_at_);
             p = (mixed + refined + 2 * refined2) >> 2;
         }
         if (p < 1) p = 1;
@@ -408,9 +402,23 @@ private:
         train<N>(w2_, out2_, bit);
         stz::update(pr, bit);
         for (int k = 0; k < N; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
+        map_train(apm_at_, bit);
+        if (apm2_at_) map_train(apm2_at_, bit);
+    }
+
+    // Adaptive probability map: row `r` (of apm_) at the mix's stretched
+    // output y, interpolated between the two nearest of its 33 points; `at`
+    // becomes the nearer one, which map_train() moves.
+    [[gnu::always_inline]] std::int32_t map_refine(std::size_t r, std::int32_t y, std::uint16_t*& at) noexcept {
+        const std::int32_t pos = y + 2048;
+        const std::int32_t j = pos >> 7, frac = pos & 127;
+        std::uint16_t* row = &apm_[r * 33];
+        at = &row[j + (frac >> 6)];
+        return (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
+    }
+    [[gnu::always_inline]] void map_train(std::uint16_t* at, int bit) const noexcept {
         const std::int32_t target = bit ? 65535 : 0;
-        *apm_at_ = static_cast<std::uint16_t>(*apm_at_ + ((target - *apm_at_) >> apm_rate_));
-        if (apm2_at_) *apm2_at_ = static_cast<std::uint16_t>(*apm2_at_ + ((target - *apm2_at_) >> apm_rate_));
+        *at = static_cast<std::uint16_t>(*at + ((target - *at) >> apm_rate_));
     }
 
     // A mixer's output, stretched: the dot product of its weights (16.16
