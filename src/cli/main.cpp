@@ -67,6 +67,19 @@ int run(const std::string& name, std::vector<std::string> rest) {
 }  // namespace
 }  // namespace stepzip::cli
 
+#if defined(STEPZIP_CLI_JEMALLOC)
+// The CLI allocates through jemalloc (linked in place of the C library's
+// malloc, CMakeLists.txt), whose memory is asked for in 2 MiB pages: a
+// several-MB input's blocks, window and tables touch tens of MB, which in
+// 4 KiB pages cost a page fault each, again whenever freed memory went back
+// to the system (docs/benchmarks.md "The CLI's allocator"). MALLOC_CONF
+// still overrides it.
+extern "C" {
+extern const char* malloc_conf;
+const char* malloc_conf = "thp:always,metadata_thp:auto";
+}
+#endif
+
 int main(int argc, char** argv) {
     using namespace stepzip::cli;
     if (argc < 2) return run("compress", {});  // as zstd: stdin -> stdout, a console refused
