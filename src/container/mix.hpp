@@ -93,6 +93,27 @@ constexpr std::int32_t squash(std::int32_t x) {
     return squash_within(x);
 }
 
+/// Adaptive probability maps (the mixed coders' last stage): a row of 33
+/// points over the stretched domain, 128 apart, each a probability of a 1
+/// in 1/65536; every row is kApmFirstRow at first. apm_refine() reads row
+/// `r` at y (-2048..2047) between its two nearest points and points `at` at
+/// the nearer one; apm_train() moves that point toward the bit by 1/2^rate.
+inline constexpr std::array<std::uint16_t, 33> kApmFirstRow = [] {
+    std::array<std::uint16_t, 33> a{};
+    for (int j = 0; j < 33; ++j) a[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(squash((j - 16) * 128));
+    return a;
+}();
+[[gnu::always_inline]] inline std::int32_t apm_refine(std::uint16_t* r, std::int32_t y, std::uint16_t*& at) noexcept {
+    const std::int32_t pos = y + 2048;
+    const std::int32_t j = pos >> 7, frac = pos & 127;
+    at = &r[j + (frac >> 6)];
+    return (r[j] * (128 - frac) + r[j + 1] * frac) >> 7;
+}
+[[gnu::always_inline]] inline void apm_train(std::uint16_t* at, int bit, int rate) noexcept {
+    const std::int32_t target = bit ? 65535 : 0;
+    *at = static_cast<std::uint16_t>(*at + ((target - *at) >> rate));
+}
+
 /// stretch(p) = the smallest x in -2047..2047 with squash(x) >> 4 >= p >> 4
 /// (2047 when none): the inverse of squash on 12-bit probabilities.
 struct StretchTable {
@@ -309,9 +330,8 @@ public:
             for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
         }
         // Every row of the map starts the same.
-        for (int j = 0; j < 33; ++j) apm_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
-        for (std::size_t r = 1; r < static_cast<std::size_t>(kApmRows + rows2_); ++r)
-            std::memcpy(&apm_[r * 33], &apm_[0], 33 * sizeof(std::uint16_t));
+        for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows + rows2_); ++r)
+            std::memcpy(&apm_[r * 33], mixdetail::kApmFirstRow.data(), sizeof mixdetail::kApmFirstRow);
     }
     MixPredictor(const MixPredictor&) = delete;
     MixPredictor& operator=(const MixPredictor&) = delete;
@@ -382,13 +402,13 @@ private:
         const std::int32_t mixed = mixdetail::squash_within(s);
         // Adaptive probability map on the slot: interpolated between the two
         // nearest of 33 points; the nearer one is trained.
-        const std::int32_t refined = map_refine(static_cast<std::size_t>(slot & (kApmRows - 1)), s, apm_at_);
+        const std::int32_t refined = mixdetail::apm_refine(&apm_[static_cast<std::size_t>(slot & (kApmRows - 1)) * 33], s, apm_at_);
         std::int32_t p = (mixed + 3 * refined) >> 2;
         apm2_at_ = nullptr;
         if (row2_ >= 0) {
             // guide(): the second map's row, at the same points; the mix a
             // quarter, the first map a quarter, the second a half.
-            const std::int32_t refined2 = map_refine(static_cast<std::size_t>(kApmRows + row2_), s, apm2_at_);
+            const std::int32_t refined2 = mixdetail::apm_refine(&apm_[static_cast<std::size_t>(kApmRows + row2_) * 33], s, apm2_at_);
             p = (mixed + refined + 2 * refined2) >> 2;
         }
         if (p < 1) p = 1;
@@ -402,23 +422,8 @@ private:
         train<N>(w2_, out2_, bit);
         stz::update(pr, bit);
         for (int k = 0; k < N; ++k) mixdetail::update_slow(*entry_[static_cast<std::size_t>(k)], bit);
-        map_train(apm_at_, bit);
-        if (apm2_at_) map_train(apm2_at_, bit);
-    }
-
-    // Adaptive probability map: row `r` (of apm_) at the mix's stretched
-    // output y, interpolated between the two nearest of its 33 points; `at`
-    // becomes the nearer one, which map_train() moves.
-    [[gnu::always_inline]] std::int32_t map_refine(std::size_t r, std::int32_t y, std::uint16_t*& at) noexcept {
-        const std::int32_t pos = y + 2048;
-        const std::int32_t j = pos >> 7, frac = pos & 127;
-        std::uint16_t* row = &apm_[r * 33];
-        at = &row[j + (frac >> 6)];
-        return (row[j] * (128 - frac) + row[j + 1] * frac) >> 7;
-    }
-    [[gnu::always_inline]] void map_train(std::uint16_t* at, int bit) const noexcept {
-        const std::int32_t target = bit ? 65535 : 0;
-        *at = static_cast<std::uint16_t>(*at + ((target - *at) >> apm_rate_));
+        mixdetail::apm_train(apm_at_, bit, apm_rate_);
+        if (apm2_at_) mixdetail::apm_train(apm2_at_, bit, apm_rate_);
     }
 
     // A mixer's output, stretched: the dot product of its weights (16.16

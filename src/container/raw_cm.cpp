@@ -88,17 +88,16 @@ struct Bucket {
 };
 static_assert(sizeof(Bucket) == 32);
 
-// Adaptive probability map: rows of 33 points over the stretched domain,
-// every row squash((j - 16) * 128) at first. A `Lazy` map writes a row when
+// Adaptive probability map (mix.hpp, mixdetail::apm_refine()): its rows,
+// each mixdetail::kApmFirstRow at first. A `Lazy` map writes a row when
 // it is first used (a small block touches few of map 1's 65536 rows;
 // filling them all cost more than coding it); the others are filled at once.
 template <bool Lazy>
 class Apm {
 public:
     explicit Apm(std::size_t rows) : t_(new std::uint16_t[rows * 33]), ready_(Lazy ? rows : 0, 0) {
-        for (int j = 0; j < 33; ++j) first_[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
         if (!Lazy)
-            for (std::size_t row = 0; row < rows; ++row) std::copy(first_.begin(), first_.end(), &t_[row * 33]);
+            for (std::size_t row = 0; row < rows; ++row) std::copy(mixdetail::kApmFirstRow.begin(), mixdetail::kApmFirstRow.end(), &t_[row * 33]);
     }
     void prefetch(std::size_t row) const noexcept {
         __builtin_prefetch(&t_[row * 33]);
@@ -108,23 +107,17 @@ public:
         std::uint16_t* r = &t_[row * 33];
         if constexpr (Lazy) {
             if (!ready_[row]) [[unlikely]] {
-                std::copy(first_.begin(), first_.end(), r);
+                std::copy(mixdetail::kApmFirstRow.begin(), mixdetail::kApmFirstRow.end(), r);
                 ready_[row] = 1;
             }
         }
-        const std::int32_t q = y + 2048, j = q >> 7, w = q & 127;
-        at_ = &r[j + (w >> 6)];
-        return (r[j] * (128 - w) + r[j + 1] * w) >> 7;
+        return mixdetail::apm_refine(r, y, at_);
     }
-    [[gnu::always_inline]] void update(int bit, int rate) noexcept {
-        const std::int32_t target = bit ? 65535 : 0;
-        *at_ = static_cast<std::uint16_t>(*at_ + ((target - *at_) >> rate));
-    }
+    [[gnu::always_inline]] void update(int bit, int rate) noexcept { mixdetail::apm_train(at_, bit, rate); }
 
 private:
     std::unique_ptr<std::uint16_t[]> t_;  // (a lazy map's rows not yet used are not initialized)
     std::vector<std::uint8_t> ready_;
-    std::array<std::uint16_t, 33> first_{};
     std::uint16_t* at_ = nullptr;
 };
 

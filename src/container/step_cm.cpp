@@ -150,27 +150,16 @@ public:
     // block touches few of them).
     explicit Apm(int rows) : t_(static_cast<std::size_t>(rows) * 33), ready_(static_cast<std::size_t>(rows)) {}
     std::int32_t refine(std::int32_t st, std::size_t row) {
-        const std::int32_t pos = std::clamp(st, -2047, 2047) + 2048;
-        const std::int32_t j = pos >> 7, frac = pos & 127;
         std::uint16_t* r = &t_[row * 33];
         if (!ready_[row]) {
-            std::memcpy(r, kFirst.data(), sizeof kFirst);
+            std::memcpy(r, mixdetail::kApmFirstRow.data(), sizeof mixdetail::kApmFirstRow);
             ready_[row] = 1;
         }
-        at_ = &r[j + (frac >> 6)];
-        return (r[j] * (128 - frac) + r[j + 1] * frac) >> 7;
+        return mixdetail::apm_refine(r, std::clamp(st, -2047, 2047), at_);
     }
-    void update(int bit) {
-        const std::int32_t target = bit ? 65535 : 0;
-        *at_ = static_cast<std::uint16_t>(*at_ + ((target - *at_) >> kApmRate));
-    }
+    void update(int bit) { mixdetail::apm_train(at_, bit, kApmRate); }
 
 private:
-    static constexpr std::array<std::uint16_t, 33> kFirst = [] {
-        std::array<std::uint16_t, 33> a{};
-        for (int j = 0; j < 33; ++j) a[static_cast<std::size_t>(j)] = static_cast<std::uint16_t>(mixdetail::squash((j - 16) * 128));
-        return a;
-    }();
     std::vector<std::uint16_t> t_;
     std::vector<std::uint8_t> ready_;
     std::uint16_t* at_ = nullptr;
