@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "../src/container/window.hpp"
 #include "stepzip/container.hpp"
 #include "stepzip/document.hpp"
+#include "stepzip/profile.hpp"
 #include "stepzip/segmenter.hpp"
 #include "support/pinned_bytes.hpp"
 
@@ -210,12 +212,50 @@ TEST(ContainerTable, KeptKeysEqualFreshKeys) {
         const TableItemKeys& f = window_keys(*fresh, c.p, b.axes);
         EXPECT_EQ(k.keys, f.keys);
         EXPECT_EQ(k.canon, f.canon);
+        EXPECT_EQ(k.canon_is_items, f.canon_is_items);
         EXPECT_EQ(k.keys, made.keys);
-        EXPECT_EQ(k.canon.size(), fresh->items.segments.size());
+        // The greedy cuts are canonical: no copy of their segments is kept.
+        EXPECT_TRUE(k.canon_is_items);
+        EXPECT_TRUE(k.canon.empty());
         // The same bytes from the kept keys, alone and from a window.
         EXPECT_EQ(write_table_block(b, c.p, segs, e, nullptr, &made), first);
         const WindowView wk{kept}, wf{fresh};
         EXPECT_EQ(write_table_block(b, c.p, segs, e, &wk, &made), write_table_block(b, c.p, segs, e, &wf));
+
+        // A cut whose degenerate segments (along an axis, and on the
+        // 8-connected profiles diagonal) carry another phase than the
+        // canonical one: the same keys and bytes, from a canonical copy.
+        if (b.axes != 2) continue;
+        const bool eight = profile_eight_connected(c.p);
+        Cut odd = segs;
+        std::size_t changed = 0;
+        for (auto& chain : odd)
+            for (Segment& s : chain) {
+                const std::int64_t x = std::llabs(s.delta[0]), y = std::llabs(s.delta[1]);
+                const bool degenerate = eight ? (std::min(x, y) == 0 || x == y) : (x == 0 || y == 0);
+                if (degenerate) {
+                    s.phase[0] += 7;
+                    ++changed;
+                }
+            }
+        ASSERT_GT(changed, 0u);
+        TableItemKeys made_odd;
+        EXPECT_EQ(write_table_block(b, c.p, odd, e, nullptr, nullptr, &made_odd), first);
+        EXPECT_FALSE(made_odd.canon_is_items);
+        EXPECT_EQ(made_odd.keys, made.keys);
+        ASSERT_EQ(made_odd.canon.size(), fresh->items.segments.size());
+        auto kept_odd = std::make_shared<WindowBlock>(), fresh_odd = std::make_shared<WindowBlock>();
+        kept_odd->items = fresh_odd->items = segment_items(b, odd);
+        const TableItemKeys& ko = window_keys(*kept_odd, c.p, b.axes, &made_odd);
+        const TableItemKeys& fo = window_keys(*fresh_odd, c.p, b.axes);
+        EXPECT_FALSE(fo.canon_is_items);
+        EXPECT_EQ(fo.keys, made.keys);
+        EXPECT_EQ(ko.canon, fo.canon);
+        EXPECT_EQ(fo.canon.size(), fresh_odd->items.segments.size());
+        EXPECT_EQ(write_table_block(b, c.p, odd, e, nullptr, &made_odd), first);
+        const WindowView wo{kept_odd}, wfo{fresh_odd};
+        EXPECT_EQ(write_table_block(b, c.p, odd, e, &wo, &made_odd), write_table_block(b, c.p, segs, e, &wk, &made));
+        EXPECT_EQ(write_table_block(b, c.p, odd, e, &wfo), write_table_block(b, c.p, segs, e, &wf));
     }
 }
 

@@ -320,6 +320,14 @@ inline void canonical_into(Profile p, const Segment& s, int axes, Segment& c) {
     }
 }
 
+// Whether `s` is its own canonical form (the cuts' segments mostly are: the
+// table coder then points at them instead of at a canonical copy).
+inline bool is_canonical(Profile p, const Segment& s, int axes) {
+    Segment c;
+    canonical_into(p, s, axes, c);
+    return c == s;
+}
+
 // kAxes: the axis count fixed at compile time (the decoder's loop for two
 // axes), 0: given at run time. The per-item operations are flattened
 // ([[gnu::flatten]]): GCC otherwise calls their vector pushes and small
@@ -945,19 +953,25 @@ const TableItemKeys& window_keys(const WindowBlock& b, Profile p, int axes, Tabl
     std::call_once(b.table_keys_once, [&] {
         const SegmentItems& w = b.items;
         TableItemKeys& t = b.table_keys;
-        if (made && made->canon.size() == w.segments.size() &&
+        if (made && (made->canon_is_items || made->canon.size() == w.segments.size()) &&
             made->keys.size() == w.segments.size() + 2 * w.starts.size()) {
             t = std::move(*made);
         } else {
-            t.canon.reserve(w.segments.size());
+            t.canon_is_items = std::all_of(w.segments.begin(), w.segments.end(),
+                                           [&](const Segment& s) { return is_canonical(p, s, axes); });
+            if (!t.canon_is_items) t.canon.reserve(w.segments.size());
             t.keys.reserve(w.segments.size() + 2 * w.starts.size());
             LineKeys line_keys;
             std::size_t k = 0;
             for (std::size_t c = 0; c < w.starts.size(); ++c) {
                 t.keys.push_back(key_of(1, w.starts[c], nullptr));
                 for (std::uint32_t q = 0; q < w.counts[c]; ++q, ++k) {
-                    canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
-                    t.keys.push_back(axes == 2 ? line_keys(t.canon.back()) : key_of(0, t.canon.back().delta, &t.canon.back().phase));
+                    const Segment* cs = &w.segments[k];
+                    if (!t.canon_is_items) {
+                        canonical_into(p, w.segments[k], axes, t.canon.emplace_back());
+                        cs = &t.canon.back();
+                    }
+                    t.keys.push_back(axes == 2 ? line_keys(*cs) : key_of(0, cs->delta, &cs->phase));
                 }
                 t.keys.push_back(2);
             }
@@ -1007,7 +1021,7 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
         for (const auto& b : *window) {
             const SegmentItems& w = b->items;
             const TableItemKeys& t = window_keys(*b, p, axes);
-            pointers_to(t.canon.data(), t.canon.size(), cs.data() + si);
+            pointers_to(t.canon_is_items ? w.segments.data() : t.canon.data(), w.segments.size(), cs.data() + si);
             deltas.insert(deltas.end(), w.starts.begin(), w.starts.end());
             keys.insert(keys.end(), t.keys.begin(), t.keys.end());
             hp = window_entries(w, si, di, hp);
@@ -1018,16 +1032,27 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     // earlier coding of the same items) when it has their count, else
     // computed here.
     const TableItemKeys* mine = nullptr;
-    if (own && own->canon.size() == own_segs && own->keys.size() == own_segs + 2 * block.chains.size()) mine = own;
-    std::vector<Segment> fresh;  // the block's canonical segments when not from `own`
+    if (own && (own->canon_is_items || own->canon.size() == own_segs) &&
+        own->keys.size() == own_segs + 2 * block.chains.size())
+        mine = own;
+    // The canonical forms of the block's segments that are not canonical
+    // already (the others are pointed at in `segs`), when not from `own`.
+    std::vector<Segment> fresh;
+    bool own_canonical = true;  // every segment of `segs` is canonical
     {
         auto si = static_cast<std::uint32_t>(cs.size());  // the block's first segment
-        if (mine) {
+        if (mine && mine->canon_is_items) {
+            for (const auto& v : segs)
+                for (const Segment& s : v) cs.push_back(&s);
+            keys.insert(keys.end(), mine->keys.begin(), mine->keys.end());
+        } else if (mine) {
             cs.resize(si + mine->canon.size());
             pointers_to(mine->canon.data(), mine->canon.size(), cs.data() + si);
             keys.insert(keys.end(), mine->keys.begin(), mine->keys.end());
         } else {
-            fresh.reserve(own_segs);  // never grows past: cs points into it
+            // Never grows past: cs points into it (only the pages written
+            // to are touched).
+            fresh.reserve(own_segs);
         }
         LineKeys line_keys;
         const bool eight = profile_eight_connected(p);
@@ -1046,10 +1071,14 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             ref = chain.start;
             for (const Segment& s : segs[i]) {
                 if (!mine) {
-                    Segment& c = fresh.emplace_back();
-                    canonical_into(p, s, axes, c);
-                    cs.push_back(&c);
-                    keys.push_back(axes == 2 ? line_keys(c) : key_of(0, c.delta, &c.phase));
+                    const Segment* c = &s;
+                    if (!is_canonical(p, s, axes)) {
+                        canonical_into(p, s, axes, fresh.emplace_back());
+                        c = &fresh.back();
+                        own_canonical = false;
+                    }
+                    cs.push_back(c);
+                    keys.push_back(axes == 2 ? line_keys(*c) : key_of(0, c->delta, &c->phase));
                 }
                 items.push_back(kSegTag | si++);
                 if (axes == 2 && s.delta[4] == 0) {  // a two-axis line: segment_length() written out
@@ -1310,7 +1339,12 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
     out += stream;
     out += extra_bits;
     if (made && !mine) {
-        made->canon = std::move(fresh);
+        made->canon_is_items = own_canonical;
+        made->canon.clear();
+        if (!own_canonical) {  // the window's copy: every segment's canonical form
+            made->canon.reserve(own_segs);
+            for (std::size_t k = first_seg; k < cs.size(); ++k) made->canon.push_back(*cs[k]);
+        }
         if (first == 0) made->keys = std::move(keys);
         else made->keys.assign(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.end());
     }

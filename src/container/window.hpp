@@ -33,7 +33,11 @@ struct SegmentItems {
 /// per history entry (start, segments, end of each chain) its match key,
 /// and the segments in canonical form.
 struct TableItemKeys {
+    /// The segments in canonical form; empty when `canon_is_items`.
     std::vector<Segment> canon;
+    /// Every segment of the items is canonical already: the canonical forms
+    /// are the items' own segments (no copy kept).
+    bool canon_is_items = false;
     std::vector<std::uint64_t> keys;
     /// A window block's: per entry but the last two, the hash of its key
     /// and the next two (the match finder's, before its shift).
