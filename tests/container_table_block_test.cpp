@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -222,18 +221,17 @@ TEST(ContainerTable, KeptKeysEqualFreshKeys) {
         const WindowView wk{kept}, wf{fresh};
         EXPECT_EQ(write_table_block(b, c.p, segs, e, &wk, &made), write_table_block(b, c.p, segs, e, &wf));
 
-        // A cut whose degenerate segments (along an axis, and on the
-        // 8-connected profiles diagonal) carry another phase than the
-        // canonical one: the same keys and bytes, from a canonical copy.
+        // A cut whose degenerate segments (a phase range of one value: along
+        // an axis, and on the 8-connected profiles diagonal) carry another
+        // phase than that one: the same keys and bytes, from a canonical copy.
         if (b.axes != 2) continue;
-        const bool eight = profile_eight_connected(c.p);
         Cut odd = segs;
         std::size_t changed = 0;
         for (auto& chain : odd)
             for (Segment& s : chain) {
-                const std::int64_t x = std::llabs(s.delta[0]), y = std::llabs(s.delta[1]);
-                const bool degenerate = eight ? (std::min(x, y) == 0 || x == y) : (x == 0 || y == 0);
-                if (degenerate) {
+                const auto ab = *phase_arguments(c.p, s, 2, 0);
+                const PhaseRange r = phase_range(c.p, ab.first, ab.second);
+                if (r.hi - r.lo == 1) {
                     s.phase[0] += 7;
                     ++changed;
                 }

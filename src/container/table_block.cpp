@@ -1072,9 +1072,10 @@ std::string write_table_block(const Block& block, Profile p, const std::vector<s
             for (const Segment& s : segs[i]) {
                 if (!mine) {
                     const Segment* c = &s;
-                    if (!is_canonical(p, s, axes)) {
-                        canonical_into(p, s, axes, fresh.emplace_back());
-                        c = &fresh.back();
+                    Segment canon;
+                    canonical_into(p, s, axes, canon);
+                    if (!(canon == s)) {
+                        c = &fresh.emplace_back(canon);
                         own_canonical = false;
                     }
                     cs.push_back(c);
