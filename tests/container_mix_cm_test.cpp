@@ -79,8 +79,12 @@ struct Model {
 };
 std::string write_dss(const Block& b, const WindowView* w) { return write_cm_step_model(b, w); }
 std::string write_v4(const Block& b, const WindowView* w) { return write_cm_step_model(b, w, kMixedStepCm); }
-const Model kModelsUnderTest[] = {
-    {write_dss, kMixedStepCmDss}, {write_v4, kMixedStepCm}, {write_light_cm_step_model, kMixedStepCmLight}};
+std::string write_light(const Block& b, const WindowView* w) { return write_light_cm_step_model(b, w, kMixedStepCmLight); }
+std::string write_light_small(const Block& b, const WindowView* w) { return write_light_cm_step_model(b, w); }
+const Model kModelsUnderTest[] = {{write_dss, kMixedStepCmDss},
+                                  {write_v4, kMixedStepCm},
+                                  {write_light, kMixedStepCmLight},
+                                  {write_light_small, kMixedStepCmLightSmall}};
 
 TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours) {
     for (const Model& model : kModelsUnderTest)
@@ -103,8 +107,39 @@ TEST(CmStepModel, RoundTripsWithAndWithoutWindowOnEightAndFourConnectedContours)
         // The window's steps are worth something to the match model.
         EXPECT_LT(primed.size(), alone.size());
         // The full models: smaller than the mixed step model of the same block.
-        if (model.byte != kMixedStepCmLight) EXPECT_LT(alone.size(), write_mixed_step_model(second, 1).size());
+        if (model.byte != kMixedStepCmLight && model.byte != kMixedStepCmLightSmall)
+            EXPECT_LT(alone.size(), write_mixed_step_model(second, 1).size());
     }
+}
+
+// Model byte 7 is model byte 5 with its row table capped at 2^16 rows
+// (docs/FORMAT.md 1.11.3): below 2^15 steps (2^16 rows or fewer either way)
+// the two codings are the same bits after the model byte; above, the rows
+// differ, and each decodes to its block.
+TEST(CmStepModel, LightModelSmallRowsBindOnlyAboveTwoToTheFifteenSteps) {
+    const Block all = corpus_block("glyphs/dejavu-4.fc", 40000);
+    Block small, large;
+    small.axes = large.axes = 2;
+    std::uint64_t steps = 0;
+    for (const Chain& c : all.chains) {
+        if (steps + c.steps.size() < (1u << 15)) small.chains.push_back(c);
+        large.chains.push_back(c);
+        steps += c.steps.size();
+    }
+    ASSERT_GE(steps, std::uint64_t{1} << 15);  // 2^17 rows or more for model byte 5
+    for (const Block* b : {&small, &large}) {
+        const std::string five = write_light_cm_step_model(*b, nullptr, kMixedStepCmLight);
+        const std::string seven = write_light_cm_step_model(*b, nullptr, kMixedStepCmLightSmall);
+        ASSERT_FALSE(five.empty());
+        ASSERT_FALSE(seven.empty());
+        EXPECT_EQ(static_cast<unsigned char>(seven[0]), kMixedStepCmLightSmall);
+        if (b == &small) EXPECT_EQ(five.substr(1), seven.substr(1));
+        else EXPECT_NE(five.substr(1), seven.substr(1));
+        EXPECT_EQ(decode(five, nullptr).chains, b->chains);
+        EXPECT_EQ(decode(seven, nullptr).chains, b->chains);
+    }
+    // Neither names another model.
+    EXPECT_TRUE(write_light_cm_step_model(small, nullptr, kMixedStepCmDss).empty());
 }
 
 // Pinned: a change of these bytes is a format change (docs/FORMAT.md 1.11.2).
@@ -112,7 +147,10 @@ TEST(CmStepModel, PayloadBytesArePinned) {
     const Block b = fixed_block("0 0 0000100001000010000\n5 -3 22223222232222\n");
     EXPECT_EQ(hex(write_cm_step_model(b, nullptr, kMixedStepCm)), "04 02 21 00 00 03 df 66 59 43 97 61 76 97 35 56 a7");
     EXPECT_EQ(hex(write_cm_step_model(b)), "06 02 21 00 00 03 6c 25 ec 76 77 cf 54 bc c3 49 52");
-    EXPECT_EQ(hex(write_light_cm_step_model(b)), "05 02 21 00 00 01 24 ab 26 3b 1e 7e 43 2d 75 57 35 a2 00");
+    EXPECT_EQ(hex(write_light_cm_step_model(b, nullptr, kMixedStepCmLight)),
+              "05 02 21 00 00 01 24 ab 26 3b 1e 7e 43 2d 75 57 35 a2 00");
+    // (a block this small: 2^12 rows either way, the same bits after the model byte)
+    EXPECT_EQ(hex(write_light_cm_step_model(b)), "07 02 21 00 00 01 24 ab 26 3b 1e 7e 43 2d 75 57 35 a2 00");
 }
 
 // The DSS context (model byte 6) is worth a few per cent on glyph contours
@@ -251,7 +289,8 @@ TEST(CmStepModel, StrongLevelsWriteItOnContoursAndTheFramesDecode) {
             EXPECT_EQ(*fast_back, glyphs);
             const auto light = mixed_model_bytes(*fast);
             EXPECT_GT(light.size(), 1u) << "level " << level;
-            EXPECT_EQ(std::count(light.begin(), light.end(), kMixedStepCmLight), static_cast<std::ptrdiff_t>(light.size()));
+            EXPECT_EQ(std::count(light.begin(), light.end(), kMixedStepCmLightSmall),
+                      static_cast<std::ptrdiff_t>(light.size()));
         }
         // Level 1: neither.
         opt.level = 1;

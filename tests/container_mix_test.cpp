@@ -201,7 +201,7 @@ TEST(MixedModels, CurvatureFlagSelectsTheCodingAndOtherModelBytesAreCorrupt) {
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
         r = read_step_model(step, 2, true, other, counts, "t", nullptr, kFormatVersion, nullptr, true);
         EXPECT_TRUE(!r.ok() || other.chains != b.chains);
-        for (const unsigned bad : {7u, 8u, 128u, 255u}) {
+        for (const unsigned bad : {8u, 9u, 128u, 255u}) {
             seg[0] = static_cast<char>(bad);
             step[0] = static_cast<char>(bad);
             r = read_segment_model(seg, Profile::eval8, 2, true, other, counts, "blk", nullptr, nullptr, false, true);

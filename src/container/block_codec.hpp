@@ -39,12 +39,15 @@ enum BlockType : unsigned { kEnd = 0, kChains = 1, kRaw = 2, kSegmentModel = 3, 
 /// docs/FORMAT.md 1.11.1); or kMixedStepCm, the context-mixing step model
 /// (docs/FORMAT.md 1.11.2); or kMixedStepCmLight, its light version
 /// (docs/FORMAT.md 1.11.3); or kMixedStepCmDss, it with the longest digital
-/// straight segment as context (docs/FORMAT.md 1.11.4).
+/// straight segment as context (docs/FORMAT.md 1.11.4); or
+/// kMixedStepCmLightSmall, the light version with at most 2^16 rows
+/// (docs/FORMAT.md 1.11.3).
 inline constexpr unsigned kMixedSegment = 0, kMixedStep = 1, kMixedCurvature = 2, kMixedStepCm = 4,
-                          kMixedStepCmLight = 5, kMixedStepCmDss = 6;
+                          kMixedStepCmLight = 5, kMixedStepCmDss = 6, kMixedStepCmLightSmall = 7;
 /// A type 6 payload's first byte names a context-mixing step model.
 inline constexpr bool is_cm_step_model(unsigned byte) {
-    return byte == kMixedStepCm || byte == kMixedStepCmLight || byte == kMixedStepCmDss;
+    return byte == kMixedStepCm || byte == kMixedStepCmLight || byte == kMixedStepCmDss ||
+           byte == kMixedStepCmLightSmall;
 }
 /// The model (kSegmentModel or kStepModel) a type 6 payload's first byte
 /// names, or kEnd for a byte that names none.

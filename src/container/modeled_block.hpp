@@ -50,10 +50,13 @@ std::string write_mixed_step_model(const Block& block, int order, const WindowVi
 /// model starts from the window's steps.
 std::string write_cm_step_model(const Block& block, const WindowView* window = nullptr,
                                 unsigned model = kMixedStepCmDss);
-/// The same with the light model (model byte kMixedStepCmLight,
-/// docs/FORMAT.md 1.11.3): two hashed models, one weight set, no
-/// probability map; about twice as fast, 9-11 % larger on large contours.
-std::string write_light_cm_step_model(const Block& block, const WindowView* window = nullptr);
+/// The same with the light model (docs/FORMAT.md 1.11.3): two hashed
+/// models, one weight set, no probability map; about twice as fast, 9-11 %
+/// larger on large contours. `model`: kMixedStepCmLightSmall (what the
+/// encoder writes: its rows in at most 2 MiB) or kMixedStepCmLight (rows by
+/// the block's steps, up to 64 MiB); any other: empty.
+std::string write_light_cm_step_model(const Block& block, const WindowView* window = nullptr,
+                                      unsigned model = kMixedStepCmLightSmall);
 
 /// Parse a payload of the given kind into `out` (chains and layout, when
 /// `expand`) and add its counts to `counts`. Errors: Errc::corrupt,

@@ -11,7 +11,8 @@
 // starts with mixed predictions, StartModel),
 // their stretched probabilities mixed by online-trained
 // mixers whose weights a small context selects, then refined by two
-// adaptive probability maps (model byte 5: two models, one mixer, no map).
+// adaptive probability maps (model bytes 5 and 7: two models, one mixer, no
+// map; 7 with at most 2^16 rows).
 // A stretch repeated anywhere before is repeated steps, whatever cut a
 // segment model would give it. One template (CmStepCoder<Io, CmKind>) runs
 // both directions of all three; integer arithmetic only, so any decoder
@@ -21,8 +22,8 @@
 // +-135 degrees), one cache line per model and step, fetched while the step
 // before is coded (0.3-0.6 us a step on the development machine; model byte
 // 6 about a third slower than 4); memory 32 bytes per hashed row,
-// 2^12..2^21 rows by the block's step count (FORMAT.md), plus the step
-// history.
+// 2^12..2^21 rows by the block's step count (FORMAT.md; model byte 7 at most
+// 2^16), plus the step history.
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -66,6 +67,11 @@ constexpr std::int32_t kInitWeight = 16384; // 0.25 in 16.16
 constexpr std::int32_t kMaxWeight = 1 << 22;
 constexpr int kApmRate = 7;
 constexpr int kMinRowBits = 12, kMaxRowBits = 21;
+// Model byte 7's cap (the light model's two rows a step): 2 MiB of rows,
+// against 64 MiB for a block of 2^20 steps: 0.1-0.4 % larger on large
+// contours, 11-17 % less CPU time each way (docs/benchmarks.md "The light
+// step model in 2 MiB").
+constexpr int kLightSmallRowBits = 16;
 
 // The counters' rates (StateMap-like, lpaq1).
 constexpr mixdetail::RecipTable<kCountLimit + 1> kRecip{};
@@ -172,14 +178,15 @@ constexpr std::uint64_t hash_ctx(int k, std::uint64_t v) {
     return x ^ (x >> 29);
 }
 
-int row_bits_for(std::uint64_t nsteps) {
+// The row table's size (FORMAT.md 1.11.2), at most 2^max_bits rows.
+int row_bits_for(std::uint64_t nsteps, int max_bits) {
     const int b = bit_length(nsteps) + 1;
-    return std::clamp(b, kMinRowBits, kMaxRowBits);
+    return std::clamp(b, kMinRowBits, max_bits);
 }
 
 using CmCounts = StepCounts;
 
-// The light model (model byte 5, docs/FORMAT.md 1.11.3) keeps models
+// The light model (model bytes 5 and 7, docs/FORMAT.md 1.11.3) keeps models
 // kLightSet of the eleven (orders 3 and 16 turns), the match input, one
 // weight set and no probability map. Chosen on glyphs-big.fc and
 // icons-big-8.fc (docs/benchmarks.md "The light step model").
@@ -187,8 +194,8 @@ constexpr std::array<int, 2> kLightSet = {1, 5};
 static_assert(std::none_of(kLightSet.begin(), kLightSet.end(), [](int k) { return k == 7 || k == 8 || k == 10; }),
               "the light model keeps no walk (StepWalk) for models 7, 8 and 10");
 
-// The three models of the coder: model byte 5, 4 and 6 (docs/FORMAT.md
-// 1.11.3, 1.11.2, 1.11.4).
+// The three models of the coder: model bytes 5 and 7, 4 and 6
+// (docs/FORMAT.md 1.11.3, 1.11.2, 1.11.4).
 enum class CmKind { light, full, dss };
 
 // Model byte 6's third weight set: per node, the DSS state (dss_state()),
@@ -356,8 +363,9 @@ class CmStepCoder : public StepCoderShell<CmStepCoder<Io, K>, Io> {
     static constexpr std::size_t kSets = Light ? kNodes * 7 : kNodes * 7 + kNodes * 64 + (Dss ? kNodes * kDssSets : 0);
 
 public:
-    CmStepCoder(Io& io, const CmCounts& counts, StepHistory* shared)
-        : io_(io), rows_(row_bits_for(counts.nsteps)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
+    // `max_row_bits`: the row table's cap (kMaxRowBits, or model byte 7's).
+    CmStepCoder(Io& io, const CmCounts& counts, StepHistory* shared, int max_row_bits = kMaxRowBits)
+        : io_(io), rows_(row_bits_for(counts.nsteps, max_row_bits)), apm1_(Light ? 1 : kNodes * 512), apm2_(Light ? 1 : kNodes * 2 * 24 * 2),
           own_(shared ? nullptr : std::make_unique<StepHistory>()), h_(shared ? *shared : *own_),
           starts_(Dss ? std::make_unique<StartModel>(counts.nchains) : nullptr) {
         for (auto& r : match_)
@@ -656,19 +664,23 @@ private:
 
 namespace {
 
+// The row table's cap of model byte `model`.
+int max_row_bits_of(unsigned model) { return model == kMixedStepCmLightSmall ? kLightSmallRowBits : kMaxRowBits; }
+
+// (`model`: the model byte, one of K's)
 template <CmKind K>
-std::string write_cm(const Block& block, const WindowView* window) {
+std::string write_cm(const Block& block, const WindowView* window, unsigned model) {
     if (block.axes != 2) return {};
     CmCounts c;
     c.nchains = block.chains.size();
     for (const Chain& ch : block.chains) c.nsteps += ch.steps.size();
     std::string out;
-    put_u8(out, K == CmKind::light ? kMixedStepCmLight : K == CmKind::dss ? kMixedStepCmDss : kMixedStepCm);
+    put_u8(out, model);
     put_varint(out, c.nchains);
     put_varint(out, c.nsteps);
     put_layout(out, block.layout);
     EncIo io;
-    auto coder = std::make_unique<CmStepCoder<EncIo, K>>(io, c, nullptr);
+    auto coder = std::make_unique<CmStepCoder<EncIo, K>>(io, c, nullptr, max_row_bits_of(model));
     if (window) coder->prime(*window);
     if (!encode_step_chains(*coder, block, c)) return {};
     out += io.rc.finish();
@@ -678,13 +690,14 @@ std::string write_cm(const Block& block, const WindowView* window) {
 }  // namespace
 
 std::string write_cm_step_model(const Block& block, const WindowView* window, unsigned model) {
-    if (model == kMixedStepCm) return write_cm<CmKind::full>(block, window);
-    if (model == kMixedStepCmDss) return write_cm<CmKind::dss>(block, window);
+    if (model == kMixedStepCm) return write_cm<CmKind::full>(block, window, model);
+    if (model == kMixedStepCmDss) return write_cm<CmKind::dss>(block, window, model);
     return {};
 }
 
-std::string write_light_cm_step_model(const Block& block, const WindowView* window) {
-    return write_cm<CmKind::light>(block, window);
+std::string write_light_cm_step_model(const Block& block, const WindowView* window, unsigned model) {
+    if (model != kMixedStepCmLight && model != kMixedStepCmLightSmall) return {};
+    return write_cm<CmKind::light>(block, window, model);
 }
 
 Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
@@ -710,8 +723,8 @@ Result<void> read_cm_step_model(std::string_view payload, int axes, bool expand,
         return decode_step_chains(coder, io, c, expand, out, counts, base, where);
     };
     StepHistory* shared = window ? running : nullptr;
-    if (kind == kMixedStepCmLight) {
-        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::light>>(io, c, shared);
+    if (kind == kMixedStepCmLight || kind == kMixedStepCmLightSmall) {
+        auto coder = std::make_unique<CmStepCoder<DecIo, CmKind::light>>(io, c, shared, max_row_bits_of(kind));
         return run(*coder);
     }
     if (kind == kMixedStepCmDss) {

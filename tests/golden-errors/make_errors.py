@@ -199,8 +199,8 @@ short = strong[:9] + put_varint(s_csize - 1) + strong[s_payload:s_end - 1]
 short += struct.pack('<I', check32(short[8:])) + strong[s_end + 4:]
 files.update({
     # The model byte names no model (0-3 do: model and curvature flag; 4 the
-    # context-mixing step model, 5 its light version).
-    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 7))),
+    # context-mixing step model, 5 and 7 its light version, 6 it with the DSS).
+    'v2_mixed_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 0', reseal2(edit(strong, s_payload, 8))),
     # The range-coded stream lost its last byte (size and checksum redone):
     # the decoder notices at the payload's end.
     'v2_mixed_stream_short': ('corrupt', 'byte 8 (block 0) payload byte %d' % (s_csize - 1), short),
