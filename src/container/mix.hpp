@@ -12,7 +12,7 @@
 // `MixEncIo` / `MixDecIo` stand in for `EncIo` / `DecIo`: the same coder
 // templates run with either, so a type 6 payload and a type 3/4 payload
 // differ only in the probabilities given to the range coder.
-// Complexity: O(kMixMaxModels) per bit; memory ~ kMixModels * 4 MiB + 4 MiB
+// Complexity: O(models) per bit; memory ~ kMixMatchModels * 4 MiB + 4 MiB
 // (the hashed tables kept per thread, see thread_tables()).
 // Not thread-safe: a predictor is made, used and destroyed by one thread.
 #pragma once
@@ -38,9 +38,11 @@
 namespace stepzip::stz {
 
 /// Hashed context models of a predictor: kMixBaseModels, or kMixMaxModels
-/// with the curvature flag (docs/FORMAT.md 1.11.1).
+/// with the curvature flag (docs/FORMAT.md 1.11.1), or kMixMatchModels (the
+/// tick block's match flag, docs/FORMAT.md 1.13 "Match").
 inline constexpr int kMixBaseModels = 6;
 inline constexpr int kMixMaxModels = 8;
+inline constexpr int kMixMatchModels = 9;
 /// log2 of the entries of each hashed table.
 inline constexpr int kMixTableBits = 20;
 /// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
@@ -201,7 +203,7 @@ private:
     std::size_t size_ = 0;
 };
 
-// The hashed tables of all models: kMixMaxModels << kMixTableBits entries,
+// The hashed tables of all models: kMixMatchModels << kMixTableBits entries,
 // all zero (p = 32768, n = 0) when a predictor takes them. Dirty flags of
 // 2^kChunkBits entries (4 KiB) tell which parts a predictor wrote, so that
 // giving the tables back clears only those: a block dirties at most eight
@@ -211,7 +213,7 @@ private:
 // block of a few thousand segments touches every 4 KiB page of the 32 MiB,
 // 8192 page faults (most of -L 19's system time on a 25 KB file) against 16.
 struct HashedTables {
-    static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMaxModels) << kMixTableBits;
+    static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMatchModels) << kMixTableBits;
     static constexpr int kChunkBits = 10;
     static constexpr std::size_t kChunks = kEntries >> kChunkBits;
 
@@ -307,7 +309,8 @@ template <int N>
 /// The mixing predictor of one block (docs/FORMAT.md "Mixed predictions").
 class MixPredictor {
 public:
-    /// `models` (kMixBaseModels or kMixMaxModels) hashed context models;
+    /// `models` (kMixBaseModels, kMixMaxModels or kMixMatchModels) hashed
+    /// context models;
     /// `base`: the coder's table of primary contexts (a decision's slot is
     /// its primary context's index in it).
     /// `guide`: MixGuide's rows and rates.
@@ -362,12 +365,14 @@ public:
 
     /// Probability (1..65535) that the decision of primary context `pr` is 1.
     [[gnu::always_inline]] std::uint32_t predict(const Prob& pr) noexcept {
+        if (n_ == kMixMatchModels) return predict_n<kMixMatchModels>(pr);
         return n_ == kMixMaxModels ? predict_n<kMixMaxModels>(pr) : predict_n<kMixBaseModels>(pr);
     }
 
     /// Trains every part on the coded bit (after predict()).
     [[gnu::always_inline]] void update(Prob& pr, int bit) noexcept {
-        if (n_ == kMixMaxModels) update_n<kMixMaxModels>(pr, bit);
+        if (n_ == kMixMatchModels) update_n<kMixMatchModels>(pr, bit);
+        else if (n_ == kMixMaxModels) update_n<kMixMaxModels>(pr, bit);
         else update_n<kMixBaseModels>(pr, bit);
     }
 
@@ -448,7 +453,7 @@ private:
         }
     }
 
-    static constexpr int kInputs = kMixMaxModels + 2;  // primary, models, bias
+    static constexpr int kInputs = kMixMatchModels + 2;  // primary, models, bias
     // Chosen on corpora/glyphs/dejavu-8.fc, plotter/hershey-grbl.fc and
     // random/walk-8.fc (docs/benchmarks.md).
     static constexpr std::int32_t kPrimaryWeight = 40960;  // 0.625
@@ -468,9 +473,9 @@ private:
     std::vector<std::uint16_t> apm_;  // kApmRows rows by slot, then MixGuide::rows for guide()
     int rows2_;
     std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
-    std::array<std::uint64_t, kMixMaxModels> hash_{};
+    std::array<std::uint64_t, kMixMatchModels> hash_{};
     std::array<std::int32_t, kInputs> x_{};
-    std::array<mixdetail::HashedProb*, kMixMaxModels> entry_{};
+    std::array<mixdetail::HashedProb*, kMixMatchModels> entry_{};
     std::int32_t* w1_ = nullptr;
     std::int32_t* w2_ = nullptr;
     std::int32_t out1_ = 32768, out2_ = 32768;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <new>
 #include <vector>
@@ -54,6 +55,10 @@ constexpr int kGuidedCrossSets = kGuidedSets + 26 * 3;
 constexpr int kGuidedRows = 9 * 4 * 4 * 2;
 constexpr MixGuide kGuide{.rows = kGuidedRows + 19 * 8, .rate = 4, .apm_rate = 6};
 static_assert(kGuidedCrossSets + 19 * 3 <= kMixSets);
+/// The match flag: mixer 1's sets by the match's state (after those by the
+/// guessed letter and b, whose index is at most 8 · 4 + 3).
+constexpr int kGuidedMatchSets = kGuidedSets + 36;
+static_assert(kGuidedMatchSets + 36 <= kMixSets);
 /// The predictor of a block of coding byte (or flags) `coding`.
 MixGuide mix_guide(unsigned coding) { return (coding & kTickGuided) ? kGuide : MixGuide{}; }
 
@@ -410,7 +415,7 @@ private:
 
     bool restart_ = false, guessing_ = false;
     Line line_, back_;
-    std::vector<std::uint8_t> hist_;
+    std::vector<std::uint8_t> hist_;  // per tick, its step mask
     std::size_t start_ = 0;
     int last_ = -1;
     std::int64_t run_ = 0;
@@ -497,6 +502,121 @@ private:
     TickTables* t_;
 };
 
+/// The match flag (docs/FORMAT.md 1.13 "Match"): the block's ticks so far,
+/// each as its step mask, and where the last few step events (each its mask
+/// and the ticks since the event before) came before. A controller that
+/// draws the same thing again (a job run twice, a glyph drawn twice at the
+/// same speeds) repeats its ticks exactly; the tick model's contexts see a
+/// few dozen ticks back.
+class TickMatch {
+public:
+    /// Events hashed to find a match, and to find a longer one while
+    /// following a match; chosen on the timed streams of docs/benchmarks.md
+    /// "Timed streams: the match flag".
+    static constexpr int kShortEvents = 4, kLongEvents = 16;
+    /// A candidate's agreement with the ticks before it is counted up to
+    /// this many ticks.
+    static constexpr std::uint64_t kVerify = std::uint64_t{1} << 8;
+    /// Match lengths (ticks) from which the guided mixer takes the match's
+    /// weight sets, and from which a sure decision it contradicts is mixed.
+    static constexpr std::uint64_t kGuideLength = 32, kUnsureLength = 8;
+
+    /// For a block of `ticks` ticks: tables of 2^clamp(bit_length(ticks) -
+    /// 2, 12, 20) entries each (4 MiB at most).
+    explicit TickMatch(std::uint64_t ticks)
+        : bits_(std::clamp(bit_length(ticks) - 2, 12, 20)), short_(zeroed(bits_)), long_(zeroed(bits_)) {
+        hist_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(ticks, kMaxReserve)));
+    }
+
+    /// 0 without a match, else 1 + the bit of axis bit `bit` in the
+    /// predicted mask + 2 min(bit_length(length), 17).
+    std::uint64_t state(int bit) const {
+        if (ptr_ < 0) return 0;
+        return 1 + ((hist_[static_cast<std::size_t>(ptr_)] >> bit) & 1u) + 2 * bucket();
+    }
+    std::uint64_t length() const { return len_; }
+    std::uint64_t bucket() const { return static_cast<std::uint64_t>(std::min(bit_length(len_), 17)); }
+
+    /// After a tick of step mask `m`: the match follows or ends, the tick
+    /// joins the history, and at a step event the tables are consulted
+    /// and updated.
+    void push(unsigned m) {
+        const std::uint64_t t = hist_.size();
+        if (ptr_ >= 0 && hist_[static_cast<std::size_t>(ptr_)] == m) {
+            ++ptr_;
+            ++len_;
+        } else {
+            ptr_ = -1;
+            len_ = 0;
+        }
+        hist_.push_back(static_cast<std::uint8_t>(m));
+        if (m == 0) return;
+        events_[count_ % kRing] = (std::min<std::uint64_t>(t - last_, 1023) << 6) | m;
+        ++count_;
+        last_ = t;
+        if (count_ >= kLongEvents) {
+            std::uint32_t& e = long_.get()[index(kLongEvents)];
+            // A longer match than the one followed (or than none) takes over.
+            if (e != 0 && static_cast<std::int64_t>(e) != ptr_ && len_ < kVerify) {
+                const std::uint64_t v = agreement(e);
+                if (v > len_) {
+                    ptr_ = e;
+                    len_ = v;
+                }
+            }
+            e = static_cast<std::uint32_t>(t + 1);
+        }
+        if (count_ >= kShortEvents) {
+            std::uint32_t& e = short_.get()[index(kShortEvents)];
+            if (ptr_ < 0 && e != 0) {
+                ptr_ = e;
+                len_ = agreement(e);
+            }
+            e = static_cast<std::uint32_t>(t + 1);
+        }
+    }
+
+private:
+    static constexpr std::uint64_t kRing = 16;
+    static constexpr std::uint64_t kMaxReserve = std::uint64_t{1} << 24;
+
+    // The table index of the last k events.
+    std::size_t index(int k) const {
+        std::uint64_t h = 0;
+        for (int j = 1; j <= k; ++j) h = (h + events_[(count_ - static_cast<std::uint64_t>(j)) % kRing] + 1) * kHashA;
+        return static_cast<std::size_t>(h >> (64 - bits_));
+    }
+    // How many ticks before position c agree with the last ticks (at most kVerify).
+    std::uint64_t agreement(std::uint64_t c) const {
+        const std::uint64_t t = hist_.size();
+        std::uint64_t n = 0;
+        while (n < kVerify && n < c && hist_[static_cast<std::size_t>(c - 1 - n)] == hist_[static_cast<std::size_t>(t - 1 - n)]) ++n;
+        return n;
+    }
+
+    // A table of 2^bits zero entries; calloc leaves the pages the coding
+    // never writes untouched (a block's declared ticks size it, the
+    // decoder's before any tick is read).
+    struct Free {
+        void operator()(std::uint32_t* p) const noexcept { std::free(p); }
+    };
+    using Table = std::unique_ptr<std::uint32_t, Free>;
+    static Table zeroed(int bits) {
+        auto* p = static_cast<std::uint32_t*>(std::calloc(std::size_t{1} << bits, sizeof(std::uint32_t)));
+        if (!p) throw std::bad_alloc();
+        return Table(p);
+    }
+
+    static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull;
+    int bits_;
+    Table short_, long_;  // per hash, the tick after an event + 1 (0: none)
+    std::vector<std::uint8_t> hist_;
+    std::array<std::uint64_t, kRing> events_{};
+    std::uint64_t count_ = 0, last_ = 0;
+    std::int64_t ptr_ = -1;  // the tick whose mask is predicted next
+    std::uint64_t len_ = 0;  // ticks it has agreed for
+};
+
 /// The tick model of one block, shared by the encoder (EncIo) and the
 /// decoder (DecIo). Not thread-safe.
 template <class Io>
@@ -508,11 +628,15 @@ public:
     /// and names other hashed models in v0 and v4; `flags`: kTickRestart
     /// (the followers' lines restart at their last 1 when they break) and
     /// kTickGuess (mixed codings: their lines guess the next letter).
-    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags)
+    /// kTickMatch (mixed codings: a match model over the block's `ticks`).
+    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
           restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
           guided_((flags & kTickGuided) != 0) {
-        if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
+        if constexpr (kMixedIo<Io>) {
+            io_.sure = sure_ ? kSure : 0;
+            if (flags & kTickMatch) match_ = std::make_unique<TickMatch>(ticks);
+        }
     }
 
     /// A chain's start: every follower forgets.
@@ -601,22 +725,43 @@ public:
                 mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (guess << 4) | uf
                                                                      : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
+                // The match flag: the match's state for this axis with t.
+                const std::uint64_t ms = match_ ? match_->state(a) : 0;
+                if (match_) mix_context(io_, 8, ctx_join(ctx_join(ax, 11), (ms << 2) | uf));
                 if (guided_) {
                     // The guessed letter with b picks mixer 1's weight set; the
                     // step against the trend with t mixer 2's and the letter,
                     // b, t and i the second map's row, or on an axis that
                     // follows the leader of an interrupt block where its
                     // Bresenham line crosses (d = cross >> 3) and that context.
+                    // With the match flag, a match of kGuideLength ticks or
+                    // more picks mixer 1's set by its state instead.
                     const int gb = static_cast<int>(guess) * 4 + ba;
+                    const bool matched = ms != 0 && match_->length() >= TickMatch::kGuideLength;
+                    const int set1 = matched ? kGuidedMatchSets + static_cast<int>(ms) - 1 : kGuidedSets + gb;
                     if (crossing)
-                        io_.m->guide(kGuidedSets + gb, kGuidedCrossSets + static_cast<int>(cross >> 3) * 3 + fa - 1,
+                        io_.m->guide(set1, kGuidedCrossSets + static_cast<int>(cross >> 3) * 3 + fa - 1,
                                      kGuidedRows + static_cast<int>(cross));
                     else
-                        io_.m->guide(kGuidedSets + gb, kGuidedSets + static_cast<int>(tr >> 2) * 3 + fa - 1,
+                        io_.m->guide(set1, kGuidedSets + static_cast<int>(tr >> 2) * 3 + fa - 1,
                                      (gb * 4 + fa) * 2 + (i > 0));
                 }
             }
-            const int step = io_.bit(t_.axis(ua).step[ctx], static_cast<int>((mask >> a) & 1u));
+            Prob& pr = t_.axis(ua).step[ctx];
+            // The match flag with coding 2: a sure decision that a match of
+            // kUnsureLength ticks or more contradicts is mixed.
+            bool unsure = false;
+            if constexpr (kMixedIo<Io>) {
+                if (sure_ && match_ && match_->length() >= TickMatch::kUnsureLength) {
+                    const std::uint64_t ms = match_->state(a);
+                    unsure = ms != 0 && static_cast<int>((ms - 1) & 1u) != (pr.p < 32768 ? 1 : 0);
+                    if (unsure) io_.sure = 0;
+                }
+            }
+            const int step = io_.bit(pr, static_cast<int>((mask >> a) & 1u));
+            if constexpr (kMixedIo<Io>) {
+                if (unsure) io_.sure = kSure;
+            }
             f.push(step, fa);
             if (windows_) {
                 if (i > 0 && lead_step) {
@@ -633,7 +778,7 @@ public:
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
                 if constexpr (kMixedIo<Io>) {
                     io_.field(2);
-                    for (int k = 0; k < kMixMaxModels; ++k)
+                    for (int k = 0; k < (match_ ? kMixMatchModels : kMixMaxModels); ++k)
                         mix_context(io_, k, ctx_join(ctx_join(static_cast<std::uint64_t>(a), 16 + static_cast<std::uint64_t>(k)),
                                                      capped(since_[ua])));
                 }
@@ -657,6 +802,7 @@ public:
             }
         }
         history_ = (history_ << minor_) | m;
+        if (match_) match_->push(m);
         mask = m;
         neg = n;
     }
@@ -729,6 +875,7 @@ private:
     bool restart_;  // the coding flag kTickRestart
     bool guessing_;  // the coding flag kTickGuess
     bool guided_;    // the coding flag kTickGuided
+    std::unique_ptr<TickMatch> match_;  // the coding flag kTickMatch (mixed codings)
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -748,7 +895,9 @@ namespace {
 template <class Io>
 void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, unsigned flags) {
     const int axes = block.axes;
-    TickCoder<Io> coder(io, t, axes, windows, coding, flags);
+    std::uint64_t ticks = 0;
+    for (const Chain& chain : block.chains) ticks += chain.steps.size();
+    TickCoder<Io> coder(io, t, axes, windows, coding, flags, ticks);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -789,7 +938,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     put_layout(out, block.layout);
     const TickTablesLease tables(axes - 1);
     if (coding != TickCoding::plain) {
-        MixPredictor pred((*tables).base(), kMixMaxModels, mix_guide(flags));
+        MixPredictor pred((*tables).base(), (flags & kTickMatch) ? kMixMatchModels : kMixMaxModels, mix_guide(flags));
         MixEncIo io;
         io.m = &pred;
         write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
@@ -836,13 +985,15 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     const std::size_t base = cur.pos();
     const TickTablesLease tables(std::clamp(axes - 1, 0, kMinor));
     std::unique_ptr<MixPredictor> pred;
-    if constexpr (kMixedIo<Io>) pred = std::make_unique<MixPredictor>((*tables).base(), kMixMaxModels, mix_guide(coding));
+    if constexpr (kMixedIo<Io>)
+        pred = std::make_unique<MixPredictor>((*tables).base(), (coding & kTickMatch) ? kMixMatchModels : kMixMaxModels,
+                                              mix_guide(coding));
     Io io = [&] {
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickFlags), coding & kTickFlags);
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickFlags), coding & kTickFlags, nsteps);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);

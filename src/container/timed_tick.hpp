@@ -45,11 +45,18 @@ inline constexpr unsigned kTickGuess = 8;
 /// maps learn faster (docs/FORMAT.md 1.13, "Guided mixing"). The blocks
 /// without it decode as before.
 inline constexpr unsigned kTickGuided = 16;
-/// The coding byte's flags the encoder sets (kTickGuess and kTickGuided
-/// only on a mixed coding).
-inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided;
-/// The flags that may go with `coding`: the guess and guided flags with a
-/// mixed one only.
+/// Flag of the coding byte, with a mixed coding only: a match model finds
+/// the block's earlier ticks that the last few step events repeat and
+/// predicts each tick by the one that followed them there; a ninth hashed
+/// model, the guided mixer's weight set when the match is long, and with
+/// coding 2 a sure decision that the match contradicts goes to the mixer
+/// (docs/FORMAT.md 1.13, "Match"). The blocks without it decode as before.
+inline constexpr unsigned kTickMatch = 32;
+/// The coding byte's flags the encoder sets (kTickGuess, kTickGuided and
+/// kTickMatch only on a mixed coding).
+inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch;
+/// The flags that may go with `coding`: the guess, guided and match flags
+/// with a mixed one only.
 inline constexpr unsigned tick_flags(TickCoding coding) {
     return coding == TickCoding::plain ? kTickRestart : kTickFlags;
 }
@@ -57,8 +64,8 @@ inline constexpr unsigned tick_flags(TickCoding coding) {
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `flags`: of kTickRestart, kTickGuess and kTickGuided (the last two
-/// dropped on the plain coding).
+/// `flags`: of kTickRestart, kTickGuess, kTickGuided and kTickMatch (the
+/// last three dropped on the plain coding).
 std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md

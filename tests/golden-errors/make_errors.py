@@ -430,6 +430,8 @@ files.update({
 # The guided bit (16, "Guided mixing") likewise.
 files.update({
     'v2_tick_guided_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 16))),
+    # The match bit (32) needs a mixed coding too (FORMAT.md 1.13 "Match").
+    'v2_tick_match_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 32))),
 })
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
