@@ -415,7 +415,7 @@ private:
 
     bool restart_ = false, guessing_ = false;
     Line line_, back_;
-    std::vector<std::uint8_t> hist_;  // per tick, its step mask
+    std::vector<std::uint8_t> hist_;
     std::size_t start_ = 0;
     int last_ = -1;
     std::int64_t run_ = 0;
@@ -610,7 +610,7 @@ private:
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull;
     int bits_;
     Table short_, long_;  // per hash, the tick after an event + 1 (0: none)
-    std::vector<std::uint8_t> hist_;
+    std::vector<std::uint8_t> hist_;  // per tick, its step mask
     std::array<std::uint64_t, kRing> events_{};
     std::uint64_t count_ = 0, last_ = 0;
     std::int64_t ptr_ = -1;  // the tick whose mask is predicted next
