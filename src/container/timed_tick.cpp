@@ -8,7 +8,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
 #include <new>
 #include <vector>
@@ -524,7 +523,11 @@ public:
     /// For a block of `ticks` ticks: tables of 2^clamp(bit_length(ticks) -
     /// 2, 12, 20) entries each (4 MiB at most).
     explicit TickMatch(std::uint64_t ticks)
-        : bits_(std::clamp(bit_length(ticks) - 2, 12, 20)), short_(zeroed(bits_)), long_(zeroed(bits_)) {
+        : bits_(std::clamp(bit_length(ticks) - 2, 12, 20)),
+          short_pages_((std::size_t{1} << bits_) * sizeof(std::uint32_t)),
+          long_pages_((std::size_t{1} << bits_) * sizeof(std::uint32_t)),
+          short_(static_cast<std::uint32_t*>(short_pages_.data())),
+          long_(static_cast<std::uint32_t*>(long_pages_.data())) {
         hist_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(ticks, kMaxReserve)));
     }
 
@@ -555,7 +558,7 @@ public:
         ++count_;
         last_ = t;
         if (count_ >= kLongEvents) {
-            std::uint32_t& e = long_.get()[index(kLongEvents)];
+            std::uint32_t& e = long_[index(kLongEvents)];
             // A longer match than the one followed (or than none) takes over.
             if (e != 0 && static_cast<std::int64_t>(e) != ptr_ && len_ < kVerify) {
                 const std::uint64_t v = agreement(e);
@@ -567,7 +570,7 @@ public:
             e = static_cast<std::uint32_t>(t + 1);
         }
         if (count_ >= kShortEvents) {
-            std::uint32_t& e = short_.get()[index(kShortEvents)];
+            std::uint32_t& e = short_[index(kShortEvents)];
             if (ptr_ < 0 && e != 0) {
                 ptr_ = e;
                 len_ = agreement(e);
@@ -594,22 +597,14 @@ private:
         return n;
     }
 
-    // A table of 2^bits zero entries; calloc leaves the pages the coding
-    // never writes untouched (a block's declared ticks size it, the
-    // decoder's before any tick is read).
-    struct Free {
-        void operator()(std::uint32_t* p) const noexcept { std::free(p); }
-    };
-    using Table = std::unique_ptr<std::uint32_t, Free>;
-    static Table zeroed(int bits) {
-        auto* p = static_cast<std::uint32_t*>(std::calloc(std::size_t{1} << bits, sizeof(std::uint32_t)));
-        if (!p) throw std::bad_alloc();
-        return Table(p);
-    }
-
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull;
     int bits_;
-    Table short_, long_;  // per hash, the tick after an event + 1 (0: none)
+    // The tables in fresh zero pages: the pages the coding never writes
+    // stay untouched (a block's declared ticks size them, the decoder's
+    // before any tick is read).
+    mixdetail::ZeroPages short_pages_, long_pages_;
+    std::uint32_t* short_;  // per hash, the tick after an event + 1 (0: none)
+    std::uint32_t* long_;
     std::vector<std::uint8_t> hist_;  // per tick, its step mask
     std::array<std::uint64_t, kRing> events_{};
     std::uint64_t count_ = 0, last_ = 0;
@@ -688,6 +683,8 @@ public:
             const int wa = windows_ && i > 0 ? bres_[ua].admits() : 0;
             const int ba = !windows_ ? (i > 0 && lead_step ? bres_[ua].admits() : 0) : window_context(i, wa, lead_step, ua);
             const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
+            // The match flag (mixed codings): the match's state for this axis.
+            const std::uint64_t ms = match_ ? match_->state(a) : 0;
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
                 io_.field(i == 0 ? 0 : 1);
@@ -725,8 +722,7 @@ public:
                 mix_context(io_, 6, ctx_join(ctx_join(ax, 7), guessing_ ? (tr << 12) | (guess << 4) | uf
                                                                      : (tr << 4) | uf));
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
-                // The match flag: the match's state for this axis with t.
-                const std::uint64_t ms = match_ ? match_->state(a) : 0;
+                // The match flag: the match's state with t.
                 if (match_) mix_context(io_, 8, ctx_join(ctx_join(ax, 11), (ms << 2) | uf));
                 if (guided_) {
                     // The guessed letter with b picks mixer 1's weight set; the
@@ -753,7 +749,6 @@ public:
             bool unsure = false;
             if constexpr (kMixedIo<Io>) {
                 if (sure_ && match_ && match_->length() >= TickMatch::kUnsureLength) {
-                    const std::uint64_t ms = match_->state(a);
                     unsure = ms != 0 && static_cast<int>((ms - 1) & 1u) != (pr.p < 32768 ? 1 : 0);
                     if (unsure) io_.sure = 0;
                 }
