@@ -68,7 +68,8 @@ struct CompressOptions {
     bool allow_raw = true;
     /// Window across blocks: 2^window_log steps + chains of earlier blocks
     /// (0: blocks independent; at most kMaxWindowLog); nullopt: set by the
-    /// level (docs/FORMAT.md "Encoder behaviour").
+    /// level, and kMaxWindowLog for a timed input (docs/FORMAT.md "Encoder
+    /// behaviour").
     std::optional<int> window_log;
     /// Two-axis chains: also cut each block into arcs drawn by this method
     /// and default-phase lines, and keep that table block where it is

@@ -1196,15 +1196,29 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
     return {};
 }
 
+void begin_contribution(BlockJob& job, const EncoderSettings& s) {
+    if (s.window_log == 0) return;
+    auto w = std::make_shared<WindowBlock>();
+    std::uint64_t steps = 0;
+    for (const Chain& c : job.block.chains) steps += c.steps.size();
+    w->weight = steps + job.block.chains.size();
+    // (only the mixed codings read them)
+    if (s.timed && s.level >= kMixedTickLevel) w->ticks = tick_masks(job.block);
+    job.contribution = std::move(w);
+}
+
+void end_contribution(BlockJob& job) {
+    if (!job.contribution || job.type != kRaw || job.contribution->ticks.empty()) return;
+    job.contribution->ticks = {};
+    job.contribution->ticks_dropped = true;
+}
+
 namespace {
 // What the block `job` chose adds to the window (with one): its symbols
 // when a block needs them (compress.cpp), its items after the second pass.
 void add_contribution(BlockJob& job, const EncoderSettings& s) {
-    if (s.window_log == 0) return;
-    auto w = std::make_shared<WindowBlock>();
-    w->weight = job.steps + job.block.chains.size();
-    w->first_type = job.type;
-    job.contribution = std::move(w);
+    if (s.window_log == 0 || !job.contribution) return;
+    job.contribution->first_type = job.type;
 }
 }  // namespace
 
@@ -1253,12 +1267,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         job.cm_light = !cm_first;
         job.type = kStepModel;
         job.order = 1;
-        if (s.window_log != 0) {
-            auto w = std::make_shared<WindowBlock>();
-            w->weight = job.steps + block.chains.size();
-            w->first_type = kStepModel;
-            job.contribution = std::move(w);
-        }
+        add_contribution(job, s);
         if (known_cm && s.cm_first_model) take_cm_first(job, *s.cm_first_model);
         return;
     }
@@ -1383,8 +1392,12 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // cannot code the block.
     if (s.timed && can_represent) {
         const TickCoding coding = s.level >= kMixedTickLevel ? TickCoding::mixed_sure : TickCoding::plain;
+        // From the window's ticks where it holds some (the mixed codings'
+        // match; the window bit).
+        const WindowView* w = job.window && coding != TickCoding::plain && has_ticks(*job.window) ? job.window : nullptr;
         auto write = [&](TickCoding c, bool irq) {
-            return irq ? write_interrupt_block(block, c) : write_tick_block(block, c);
+            const unsigned flags = kTickFlags | (w ? kTickWindow : 0u);
+            return irq ? write_interrupt_block(block, c, flags, w) : write_tick_block(block, c, flags, w);
         };
         const bool use_irq = coding == TickCoding::plain ? timed.irq : timed.irq_mixed;
         std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding, use_irq);
@@ -1398,8 +1411,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             const std::string other = write(coding, !use_irq);
             if (!other.empty() && other.size() < tick.size()) tick = other;
         }
+        const bool windowed = tick.size() >= 2 && (static_cast<unsigned char>(tick[1]) & kTickWindow);
         if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
-            consider(kTickBlock, make_stored_record(kExtended, job.flags, tick)))
+            consider(kTickBlock, make_stored_record(kExtended, job.flags | (windowed ? kFlagWindow : 0u), tick)))
             job.cut.clear();
     }
     // The step model decodes a few times slower than a table block: below
@@ -1659,6 +1673,28 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
         }
         std::string rec = make_stored_record(record_type, job.flags | (w ? kFlagWindow : 0u), table);
         if (job.record.empty() || rec.size() < job.record.size()) job.record = std::move(rec);
+        return;
+    }
+    if (job.type == kTickBlock) {
+        // The first pass read the ticks of every block in the window; a
+        // block that became a raw one has none (end_contribution()): coded
+        // again from the window as it is.
+        const RecordView rec = view_record(job.record);
+        if (rec.payload.size() < 2 || !(static_cast<unsigned char>(rec.payload[1]) & kTickWindow) ||
+            std::none_of(window.begin(), window.end(), [](const auto& b) { return b->ticks_dropped; }))
+            return;
+        const unsigned coding = static_cast<unsigned char>(rec.payload[1]);
+        const auto c = static_cast<TickCoding>(coding & ~(kTickFlags | kTickWindow));
+        const std::string tick = static_cast<unsigned char>(rec.payload[0]) == kInterruptSubtype
+                                     ? write_interrupt_block(job.block, c, coding, &window)
+                                     : write_tick_block(job.block, c, coding, &window);
+        const bool windowed = tick.size() >= 2 && (static_cast<unsigned char>(tick[1]) & kTickWindow);
+        if (tick.empty() || tick.size() > kMaxBlockPayload) {
+            job.error = make_error(Errc::limit, s.source + ": chain " + std::to_string(job.first_chain + 1) +
+                                                    ": its block's tick block exceeds the payload limit");
+            return;
+        }
+        job.record = make_stored_record(kExtended, job.flags | (windowed ? kFlagWindow : 0u), tick);
         return;
     }
     if (job.type == kExtended) {

@@ -182,21 +182,28 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
     bool chain_open = false;
     auto flush_batch = [&]() -> Result<void> {
         if (batch.empty()) return {};
-        // Pass 1: block types and contributions, without the window.
+        // The window each job starts from: the blocks before it (a block's
+        // weight does not depend on its type). What a block adds is fixed
+        // in steps, so that no job waits for the choices of the jobs before
+        // it: a timed frame's ticks before pass 1 (which reads them; a
+        // block that becomes a raw one drops them after it), its symbols by
+        // pass 1, its segment items by pass 2.
+        std::vector<WindowView> views(batch.size());
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+            begin_contribution(batch[i], s);
+            views[i] = window.view();
+            batch[i].window = &views[i];
+            if (batch[i].contribution) window.push(batch[i].contribution);
+        }
+        // Pass 1: block types and contributions, without the window (but
+        // the ticks).
         parallel_for(batch.size(), threads, [&](std::size_t i) { choose_block(batch[i], s); });
         for (BlockJob& j : batch)
             if (j.error.code != Errc::ok) return std::move(j.error);
-        // The window each job starts from: the blocks before it. What a
-        // block adds is fixed in two steps, so that no job waits for the
-        // choices of the jobs before it: its symbols by pass 1, its segment
-        // items by pass 2.
-        std::vector<WindowView> views(batch.size());
-        for (std::size_t i = 0; i < batch.size(); ++i) {
-            views[i] = window.view();
-            if (batch[i].contribution) {
-                window.push(batch[i].contribution);
-                if (batch[i].type != kRaw) pending_symbols.push_back({batch[i].contribution, &batch[i].block, nullptr});
-            }
+        for (BlockJob& j : batch) {
+            end_contribution(j);
+            j.window = nullptr;
+            if (j.contribution && j.type != kRaw) pending_symbols.push_back({j.contribution, &j.block, nullptr});
         }
         // Blocks the window no longer holds never need their symbols.
         std::erase_if(pending_symbols, [](const PendingSymbols& p) { return p.w.use_count() == 1; });
@@ -308,6 +315,13 @@ Result<FrameInfo> compress_stream(const ReadFn& in, const WriteFn& out, const Co
         }
         if (!reader) {
             s.timed = *format == InputFormat::timed;
+            // A timed frame's window holds one block of the default 2^22
+            // ticks (its weight is its ticks + chains): the tick blocks'
+            // match reads the block before (docs/FORMAT.md 1.8 "Ticks").
+            if (s.timed && !opt.window_log) {
+                s.window_log = kMaxWindowLog;
+                window = Window(std::uint64_t{1} << s.window_log);
+            }
             reader.emplace(*format, s.source, opt.block_steps.value_or(s.timed ? kDefaultTimedBlockTicks : kDefaultBlockSteps));
             render = std::make_unique<BlockWriter>(*format);
         }

@@ -327,6 +327,8 @@ private:
                 if (block.continues && chain_open_ && counts.chains > 0) --info_.chains;
                 chain_open_ = block.open;
                 contribution->weight = counts.steps + counts.chains;
+                // A timed frame's chain block: its ticks, for the tick blocks' match.
+                if (hdr_.format == InputFormat::timed && window_.limit()) contribution->ticks = tick_masks(block);
                 if (steps_ && !on_history) {
                     add_steps(*contribution, block);
                     step_history_add(*steps_, *contribution);

@@ -117,6 +117,9 @@ struct BlockJob {
     int mixed_pays = -1;
     std::string light_model;  ///< the light model's payload of the whole block without the window, when made
     std::shared_ptr<WindowBlock> contribution;  ///< what the block adds to the window
+    /// The blocks before it in the window (compress.cpp; the first pass
+    /// reads their ticks only), or null.
+    const WindowView* window = nullptr;
     TableItemKeys table_keys;  ///< table block: `cut`'s item keys from the first pass (for `contribution`)
     /// Table block coded once, by the third pass (from the window when it
     /// holds items): `record` is empty until then.
@@ -164,6 +167,13 @@ bool raw_cm_may_win(std::string_view raw, std::size_t best);
 /// order, and the part of its contribution to the window that depends only
 /// on whether it is a chain block: weight, Freeman symbols, chain starts.
 void choose_block(BlockJob& job, const EncoderSettings& s);
+
+/// Before the first pass, with a window: what the block adds to it whatever
+/// its type (its weight; a timed frame's, its ticks from the mixed levels).
+void begin_contribution(BlockJob& job, const EncoderSettings& s);
+/// After the first pass: a block that became a raw one adds no ticks (its
+/// contribution's ticks_dropped is set).
+void end_contribution(BlockJob& job);
 
 /// Whether window_step_pass() may code `job` by the step model from
 /// `window` (then the window's blocks need their symbols: add_steps()).

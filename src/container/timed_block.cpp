@@ -34,7 +34,7 @@ Result<void> read_extended_block(std::string_view payload, Profile p, int axes, 
     const unsigned subtype = payload.empty() ? 0xFFu : static_cast<unsigned char>(payload[0]);
     if (subtype == kTickSubtype || subtype == kInterruptSubtype) {
         if (items) *items = SegmentItems{};
-        return read_tick_block(payload, axes, expand, out, counts, where);
+        return read_tick_block(payload, axes, expand, out, counts, where, window);
     }
     if (subtype != kTimedSubtype)
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");

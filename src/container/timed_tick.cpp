@@ -520,15 +520,20 @@ public:
     /// weight sets, and from which a sure decision it contradicts is mixed.
     static constexpr std::uint64_t kGuideLength = 32, kUnsureLength = 8;
 
-    /// For a block of `ticks` ticks: tables of 2^clamp(bit_length(ticks) -
-    /// 2, 12, 20) entries each (4 MiB at most).
-    explicit TickMatch(std::uint64_t ticks)
-        : bits_(std::clamp(bit_length(ticks) - 2, 12, 20)),
+    /// For a block of `ticks` ticks after the ticks of `window` (the window
+    /// flag; else null), T ticks in all: tables of 2^clamp(bit_length(T) -
+    /// 2, 12, 20) entries each (4 MiB at most). The window's ticks, oldest
+    /// first, are pushed as if coded.
+    TickMatch(std::uint64_t ticks, const WindowView* window)
+        : bits_(std::clamp(bit_length(ticks + window_ticks(window)) - 2, 12, 20)),
           short_pages_((std::size_t{1} << bits_) * sizeof(std::uint32_t)),
           long_pages_((std::size_t{1} << bits_) * sizeof(std::uint32_t)),
           short_(static_cast<std::uint32_t*>(short_pages_.data())),
           long_(static_cast<std::uint32_t*>(long_pages_.data())) {
-        hist_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(ticks, kMaxReserve)));
+        hist_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(ticks + window_ticks(window), kMaxReserve)));
+        if (window)
+            for (const auto& b : *window)
+                for (const std::uint8_t m : b->ticks) push(m);
     }
 
     /// 0 without a match, else 1 + the bit of axis bit `bit` in the
@@ -583,6 +588,13 @@ private:
     static constexpr std::uint64_t kRing = 16;
     static constexpr std::uint64_t kMaxReserve = std::uint64_t{1} << 24;
 
+    static std::uint64_t window_ticks(const WindowView* window) {
+        std::uint64_t n = 0;
+        if (window)
+            for (const auto& b : *window) n += b->ticks.size();
+        return n;
+    }
+
     // The table index of the last k events.
     std::size_t index(int k) const {
         std::uint64_t h = 0;
@@ -623,14 +635,17 @@ public:
     /// and names other hashed models in v0 and v4; `flags`: kTickRestart
     /// (the followers' lines restart at their last 1 when they break) and
     /// kTickGuess (mixed codings: their lines guess the next letter).
-    /// kTickMatch (mixed codings: a match model over the block's `ticks`).
-    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks)
+    /// kTickMatch (mixed codings: a match model over the block's `ticks`,
+    /// after the ticks of `window` with kTickWindow).
+    TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks,
+              const WindowView* window)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
           restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
           guided_((flags & kTickGuided) != 0) {
         if constexpr (kMixedIo<Io>) {
             io_.sure = sure_ ? kSure : 0;
-            if (flags & kTickMatch) match_ = std::make_unique<TickMatch>(ticks);
+            if (flags & kTickMatch)
+                match_ = std::make_unique<TickMatch>(ticks, (flags & kTickWindow) ? window : nullptr);
         }
     }
 
@@ -888,11 +903,12 @@ namespace {
 
 // The chains of `block` (every step advancing time) coded through `io`.
 template <class Io>
-void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, unsigned flags) {
+void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCoding coding, unsigned flags,
+                 const WindowView* window) {
     const int axes = block.axes;
     std::uint64_t ticks = 0;
     for (const Chain& chain : block.chains) ticks += chain.steps.size();
-    TickCoder<Io> coder(io, t, axes, windows, coding, flags, ticks);
+    TickCoder<Io> coder(io, t, axes, windows, coding, flags, ticks, window);
     Point ref{};
     for (const Chain& chain : block.chains) {
         io.field(3);
@@ -915,7 +931,8 @@ void write_ticks(Io& io, TickTables& t, const Block& block, bool windows, TickCo
     }
 }
 
-std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned flags, unsigned subtype) {
+std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned flags, unsigned subtype,
+                                const WindowView* window) {
     const int axes = block.axes;
     if (axes < 2 || axes > kMaxAxes) return {};
     std::uint64_t nsteps = 0;
@@ -927,6 +944,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     std::string out;
     put_u8(out, subtype);
     flags &= tick_flags(coding);
+    if (!(flags & kTickMatch) || !window || !has_ticks(*window)) flags &= ~kTickWindow;
     put_u8(out, static_cast<unsigned>(coding) | flags);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
@@ -936,11 +954,11 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
         MixPredictor pred((*tables).base(), (flags & kTickMatch) ? kMixMatchModels : kMixMaxModels, mix_guide(flags));
         MixEncIo io;
         io.m = &pred;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags, window);
         out += io.rc.finish();
     } else {
         EncIo io;
-        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags);
+        write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags, window);
         out += io.rc.finish();
     }
     return out;
@@ -948,28 +966,35 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
 
 }  // namespace
 
-std::string write_tick_block(const Block& block, TickCoding coding, unsigned flags) {
-    return write_ticks_payload(block, coding, flags, kTickSubtype);
+bool has_ticks(const WindowView& window) {
+    return std::any_of(window.begin(), window.end(), [](const auto& b) { return !b->ticks.empty(); });
 }
 
-std::string write_interrupt_block(const Block& block, TickCoding coding, unsigned flags) {
-    return write_ticks_payload(block, coding, flags, kInterruptSubtype);
+std::string write_tick_block(const Block& block, TickCoding coding, unsigned flags, const WindowView* window) {
+    return write_ticks_payload(block, coding, flags, kTickSubtype, window);
+}
+
+std::string write_interrupt_block(const Block& block, TickCoding coding, unsigned flags, const WindowView* window) {
+    return write_ticks_payload(block, coding, flags, kInterruptSubtype, window);
 }
 
 namespace {
 
 template <class Io>
 Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
-                        const std::string& where) {
+                        const std::string& where, const WindowView* window) {
     Cursor cur(payload);
     unsigned subtype, coding;
     if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
     const bool windows = subtype == kInterruptSubtype;
     const auto is = [&](TickCoding c) { return (coding & ~tick_flags(c)) == static_cast<unsigned>(c); };
-    if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)))
+    if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)) ||
+        ((coding & kTickWindow) && !(coding & kTickMatch)))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));
+    if ((coding & kTickWindow) && !window)
+        return make_error(Errc::corrupt, where + " byte 1: the match reads the window of a block not flagged window");
     std::uint64_t nchains, nsteps;
     if (!cur.varint(nchains) || !cur.varint(nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
@@ -988,7 +1013,8 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickFlags), coding & kTickFlags, nsteps);
+    constexpr unsigned kAll = kTickFlags | kTickWindow;
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kAll), coding & kAll, nsteps, window);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
@@ -1033,12 +1059,13 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
 }  // namespace
 
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
-                             const std::string& where) {
+                             const std::string& where, const WindowView* window) {
     // The coding byte picks the coder (an unknown one is reported by the plain reader).
-    const unsigned coding = payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~kTickFlags : 0;
+    const unsigned coding =
+        payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~(kTickFlags | kTickWindow) : 0;
     if (coding == static_cast<unsigned>(TickCoding::mixed) || coding == static_cast<unsigned>(TickCoding::mixed_sure))
-        return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where);
-    return read_ticks<DecIo>(payload, axes, expand, out, counts, where);
+        return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where, window);
+    return read_ticks<DecIo>(payload, axes, expand, out, counts, where, window);
 }
 
 }  // namespace stepzip::stz

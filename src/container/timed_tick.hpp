@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "block_codec.hpp"
+#include "window.hpp"
 
 namespace stepzip::stz {
 
@@ -52,30 +53,42 @@ inline constexpr unsigned kTickGuided = 16;
 /// coding 2 a sure decision that the match contradicts goes to the mixer
 /// (docs/FORMAT.md 1.13, "Match"). The blocks without it decode as before.
 inline constexpr unsigned kTickMatch = 32;
-/// The coding byte's flags the encoder sets (kTickGuess, kTickGuided and
-/// kTickMatch only on a mixed coding).
+/// The coding byte's flags the encoder sets on every block (kTickGuess,
+/// kTickGuided and kTickMatch only on a mixed coding).
 inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch;
-/// The flags that may go with `coding`: the guess, guided and match flags
-/// with a mixed one only.
+/// Flag of the coding byte, with the match flag only: the match starts from
+/// the ticks of the window's blocks, as if they had been coded before the
+/// block's first tick; the block is flagged `window` (docs/FORMAT.md 1.13,
+/// "Match", and 1.8 "Ticks"). The encoder sets it when the window holds
+/// ticks and the block comes out smaller.
+inline constexpr unsigned kTickWindow = 64;
+/// The flags that may go with `coding`: the guess, guided, match and window
+/// flags with a mixed one only (the window flag with the match flag only).
 inline constexpr unsigned tick_flags(TickCoding coding) {
-    return coding == TickCoding::plain ? kTickRestart : kTickFlags;
+    return coding == TickCoding::plain ? kTickRestart : kTickFlags | kTickWindow;
 }
+/// Whether the window holds ticks (tick_masks()) for the window flag.
+bool has_ticks(const WindowView& window);
 
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `flags`: of kTickRestart, kTickGuess, kTickGuided and kTickMatch (the
-/// last three dropped on the plain coding).
-std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
+/// `flags`: of kTickRestart, kTickGuess, kTickGuided, kTickMatch and
+/// kTickWindow (all but the first dropped on the plain coding; the window
+/// flag dropped without the match flag or without ticks in `window`).
+std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags,
+                             const WindowView* window = nullptr);
 
 /// Payload of an interrupt block for `block` (subtype 1, docs/FORMAT.md
 /// 1.14); empty when it cannot be one (as write_tick_block).
-std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags);
+std::string write_interrupt_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags,
+                                  const WindowView* window = nullptr);
 
 /// Parses a tick-block or interrupt-block payload into `out` (when `expand`) and adds its
-/// counts to `counts` (no segments). Errors: Errc::corrupt and Errc::limit
+/// counts to `counts` (no segments); `window`: the block's window when it
+/// is flagged `window`, else null. Errors: Errc::corrupt and Errc::limit
 /// naming the payload byte after `where`.
 Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Block& out, BlockCounts& counts,
-                             const std::string& where);
+                             const std::string& where, const WindowView* window = nullptr);
 
 }  // namespace stepzip::stz

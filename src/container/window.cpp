@@ -39,6 +39,21 @@ std::vector<std::uint8_t> step_symbols(const Block& block) {
     return out;
 }
 
+std::vector<std::uint8_t> tick_masks(const Block& block) {
+    std::vector<std::uint8_t> out;
+    std::size_t n = 0;
+    for (const Chain& chain : block.chains) n += chain.steps.size();
+    out.reserve(n);
+    for (const Chain& chain : block.chains)
+        for (const Step s : chain.steps) {
+            unsigned m = 0;
+            for (int a = 1; a < block.axes; ++a)
+                if (step_axis(s, a) != 0) m |= 1u << (a - 1);
+            out.push_back(static_cast<std::uint8_t>(m));
+        }
+    return out;
+}
+
 std::vector<Point> start_deltas(const Block& block) {
     std::vector<Point> out;
     out.reserve(block.chains.size());

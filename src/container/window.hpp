@@ -54,6 +54,13 @@ struct WindowBlock {
     std::vector<Chain> chains;
     std::vector<std::uint8_t> symbols;  ///< two-axis chain blocks: Freeman codes, 8 after each chain
     std::vector<Point> starts;          ///< with `symbols`: each chain's start delta
+    /// Timed frames' chain blocks: each step's mask of the axes besides
+    /// time (tick_masks(); the tick block's match, docs/FORMAT.md 1.8).
+    std::vector<std::uint8_t> ticks;
+    /// Encoder: `ticks` were made before the first pass and dropped after
+    /// it (the block became a raw one): the first pass of a later block read
+    /// them (compress.cpp).
+    bool ticks_dropped = false;
     std::uint64_t first_symbol = 0;     ///< frame position of its first symbol (the frame history's)
     /// Encoder: the frame history that holds its symbols (compress.cpp), or null.
     const StepHistory* history = nullptr;
@@ -95,6 +102,11 @@ private:
 /// Freeman codes of a two-axis block's chains, 8 after each chain; empty
 /// when the block is not two-axis or holds a step that is no Freeman code.
 std::vector<std::uint8_t> step_symbols(const Block& block);
+
+/// Per step of `block`, chain after chain, its step mask: bit a - 1 set
+/// when axis a >= 1 moves (what a timed frame's chain block adds to the
+/// window for the tick block's match, docs/FORMAT.md 1.8 "Ticks").
+std::vector<std::uint8_t> tick_masks(const Block& block);
 
 /// Each chain's start delta: from the previous chain's end (the first from
 /// the origin), as the models code it.

@@ -433,6 +433,20 @@ files.update({
     # The match bit (32) needs a mixed coding too (FORMAT.md 1.13 "Match").
     'v2_tick_match_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tick, k_payload + 1, 32))),
 })
+# The window bit (64, FORMAT.md 1.13 "Match"), from
+# tests/golden/v2/tick_window.steps.stz: an interrupt block of coding byte
+# 62, then one of coding byte 126 flagged `window`.
+twin, w_payload = first_extended_block('tick_window.steps.stz', 1, 62)
+w_second = block2(twin)[1]
+_, w_payload2 = varint_at(twin, w_second + 1)
+assert twin[w_second] & 0x20 and twin[w_payload2 + 1] == 126, 'v2/tick_window.steps.stz: second block'
+files.update({
+    # The bit without the match bit (coding byte 94): an unknown coding.
+    'v2_tick_window_no_match': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(twin, w_payload + 1, 94))),
+    # The second block's window flag cleared: its match has no window to read.
+    'v2_tick_window_unflagged': ('corrupt', 'byte %d (block 1) payload byte 1' % w_second,
+                                 reseal2(edit(twin, w_second, twin[w_second] & ~0x20), w_second)),
+})
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
 rcm, r_payload = first_extended_block('raw_cm.hpgl.stz', 3, 0)
