@@ -58,9 +58,9 @@ Chain timed_chain(std::mt19937& rng, int axes, std::size_t ticks, Point start) {
 using stz::TickCoding;
 constexpr TickCoding kCodings[] = {TickCoding::plain, TickCoding::mixed, TickCoding::mixed_sure};
 
-// The coding byte for `coding` and `flags`: the guess flag goes with a mixed coding only.
+// The coding byte for `coding` and `flags`: the flags that go with the coding (tick_flags()).
 unsigned coding_byte(TickCoding coding, unsigned flags) {
-    return static_cast<unsigned>(coding) | (flags & (coding == TickCoding::plain ? stz::kTickRestart : stz::kTickFlags));
+    return static_cast<unsigned>(coding) | (flags & stz::tick_flags(coding));
 }
 
 Block round_trip(const Block& in, TickCoding coding = TickCoding::plain, bool irq = false, unsigned flags = stz::kTickFlags) {
@@ -101,7 +101,7 @@ TEST(TickBlock, BlocksOnEveryAxisCountRoundTrip) {
             for (const bool irq : {false, true})
                 for (const unsigned flags : {0u, stz::kTickRestart, stz::kTickGuess, stz::kTickGuided,
                                              stz::kTickRestart | stz::kTickGuided, stz::kTickMatch,
-                                             stz::kTickGuess | stz::kTickMatch, stz::kTickFlags})
+                                             stz::kTickGuess | stz::kTickMatch, stz::kTickRefine, stz::kTickFlags})
                     for (const TickCoding coding : kCodings) {
                         const Block out = round_trip(b, coding, irq, flags);
                         EXPECT_EQ(out.chains, b.chains) << "axes " << axes << " variant " << variant << " coding "
@@ -197,7 +197,7 @@ TEST(TickBlock, LinesThatGuessTheirRateCodeARampSmaller) {
                 << "coding " << static_cast<unsigned>(coding) << " irq " << irq;
         }
     // On the plain coding the flag is not written: the same bytes.
-    EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickFlags),
+    EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart | stz::kTickGuess),
               stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart));
 }
 
@@ -218,17 +218,18 @@ TEST(TickBlock, GuidedMixingCodesARampSmaller) {
             EXPECT_LT(guided * 100, unguided * 95) << "coding " << static_cast<unsigned>(coding) << " irq " << irq
                                                     << ": " << guided << " against " << unguided;
         }
-    EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickFlags),
+    EXPECT_EQ(stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart | stz::kTickGuided),
               stz::write_tick_block(b, TickCoding::plain, stz::kTickRestart));
 }
 
-// The match flag: a log that repeats itself (a job run twice; here 20 000
-// ticks whose axes step after random intervals of 2-20 ticks, twice in one
-// chain) is found in the block's earlier ticks and each repeated tick
-// predicted by the one that followed there. Both blocks decode under both
-// mixed codings, and the repeat costs under half of what it costs without
-// the flag (a fifth to a third here; without it 415-1059 bytes, the first
-// time 2.1 KB); the flag is not written on the plain coding.
+// The match flag (the mixed codings) and the refine flag (the plain one):
+// a log that repeats itself (a job run twice; here 20 000 ticks whose axes
+// step after random intervals of 2-20 ticks, twice in one chain) is found
+// in the block's earlier ticks and each repeated tick predicted by the one
+// that followed there. Both blocks decode under every coding, and the
+// repeat costs under half of what it costs without the flag (without it
+// 415-1059 bytes, the first time 2.1 KB); each flag is written with its
+// codings only.
 // 20 000 ticks whose two axes step after random intervals of 2-20 ticks.
 Chain random_intervals() {
     std::mt19937 rng(29);
@@ -255,7 +256,7 @@ TEST(TickBlock, MatchFlagCodesARepeatedLogForLittle) {
     Block twice = once;
     twice.chains[0].steps.insert(twice.chains[0].steps.end(), c.steps.begin(), c.steps.end());
     constexpr unsigned kWithout = stz::kTickRestart | stz::kTickGuess | stz::kTickGuided;
-    for (const TickCoding coding : {TickCoding::mixed, TickCoding::mixed_sure})
+    for (const TickCoding coding : kCodings)
         for (const bool irq : {false, true}) {
             EXPECT_EQ(round_trip(twice, coding, irq, stz::kTickFlags).chains, twice.chains);
             const auto size = [&](const Block& b, unsigned flags) {
@@ -267,16 +268,20 @@ TEST(TickBlock, MatchFlagCodesARepeatedLogForLittle) {
                                                   << ": " << repeat << " bytes against " << repeat_without
                                                   << ", once " << size(once, stz::kTickFlags);
         }
-    EXPECT_EQ(stz::write_tick_block(twice, TickCoding::plain, stz::kTickFlags),
+    // The match flag is not written on the plain coding, the refine flag
+    // on a mixed one.
+    EXPECT_EQ(stz::write_tick_block(twice, TickCoding::plain, stz::kTickRestart | stz::kTickMatch),
               stz::write_tick_block(twice, TickCoding::plain, stz::kTickRestart));
+    EXPECT_EQ(stz::write_tick_block(twice, TickCoding::mixed, stz::kTickFlags),
+              stz::write_tick_block(twice, TickCoding::mixed, stz::kTickFlags & ~stz::kTickRefine));
 }
 
 // The window bit: the same log in a block of its own after a block that
 // holds it (a job run again farther back than a block). Coded from the
 // window's ticks the copy costs under a third of what the block costs
-// alone; it decodes with its window, and is refused at its coding byte
-// without one. The writer drops the bit where it cannot apply: no ticks in
-// the window, no match flag, the plain coding.
+// alone, under every coding; it decodes with its window, and is refused at
+// its coding byte without one. The writer drops the bit where it cannot
+// apply: no ticks in the window, no match or refine flag.
 TEST(TickBlock, WindowBitFindsARepeatInTheBlockBefore) {
     Block once;
     once.axes = 3;
@@ -287,14 +292,15 @@ TEST(TickBlock, WindowBitFindsARepeatInTheBlockBefore) {
     const stz::WindowView window{before};
     const stz::WindowView no_ticks{std::make_shared<stz::WindowBlock>()};
     constexpr unsigned kWith = stz::kTickFlags | stz::kTickWindow;
-    for (const TickCoding coding : {TickCoding::mixed, TickCoding::mixed_sure})
+    for (const TickCoding coding : kCodings)
         for (const bool irq : {false, true}) {
+            const unsigned match = coding == TickCoding::plain ? stz::kTickRefine : stz::kTickMatch;
             const auto write = [&](unsigned flags, const stz::WindowView* w) {
                 return irq ? stz::write_interrupt_block(once, coding, flags, w) : stz::write_tick_block(once, coding, flags, w);
             };
             const std::string with = write(kWith, &window), alone = write(stz::kTickFlags, nullptr);
             ASSERT_FALSE(with.empty());
-            EXPECT_EQ(static_cast<unsigned char>(with[1]), static_cast<unsigned>(coding) | kWith);
+            EXPECT_EQ(static_cast<unsigned char>(with[1]), coding_byte(coding, kWith));
             EXPECT_LT(with.size() * 3, alone.size()) << "coding " << static_cast<unsigned>(coding) << " irq " << irq
                                                      << ": " << with.size() << " bytes against " << alone.size();
             Block out;
@@ -309,10 +315,8 @@ TEST(TickBlock, WindowBitFindsARepeatInTheBlockBefore) {
             EXPECT_EQ(refused.error().message, "P byte 1: the match reads the window of a block not flagged window");
             EXPECT_EQ(write(kWith, &no_ticks), alone);
             EXPECT_EQ(write(kWith, nullptr), alone);
-            EXPECT_EQ(write(kWith & ~stz::kTickMatch, &window), write(stz::kTickFlags & ~stz::kTickMatch, nullptr));
+            EXPECT_EQ(write(kWith & ~match, &window), write(stz::kTickFlags & ~match, nullptr));
         }
-    EXPECT_EQ(stz::write_tick_block(once, TickCoding::plain, kWith, &window),
-              stz::write_tick_block(once, TickCoding::plain, stz::kTickRestart));
 }
 
 TEST(TickBlock, EmptyBlockAndIdleChainRoundTrip) {
@@ -479,11 +483,11 @@ TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
             ASSERT_TRUE(z.ok()) << z.error().message;
             EXPECT_GT(tick_blocks(*z), 1u) << "seed " << seed << " level " << level;
             // Plain contexts at -L 1 and 2, the mixed coding 2 from 3; lines
-            // restarting, and guessing their rate where mixed (from the
-            // window's ticks where that is smaller).
+            // restarting, guessing their rate where mixed, and a match (from
+            // the window's ticks after the first block).
             const auto coding = static_cast<int>(level >= 3 ? coding_byte(TickCoding::mixed_sure, stz::kTickFlags)
                                                             : coding_byte(TickCoding::plain, stz::kTickFlags));
-            const std::size_t windowed = level >= 3 ? tick_blocks(*z, -1, coding | static_cast<int>(stz::kTickWindow)) : 0;
+            const std::size_t windowed = tick_blocks(*z, -1, coding | static_cast<int>(stz::kTickWindow));
             EXPECT_EQ(tick_blocks(*z, -1, coding) + windowed, tick_blocks(*z)) << "seed " << seed << " level " << level;
             auto back = decompress(*z);
             ASSERT_TRUE(back.ok()) << back.error().message;
@@ -494,10 +498,10 @@ TEST(TickBlock, FramesCutIntoManyBlocksRoundTripAtEveryTier) {
 
 // A job run again farther back than a block (a long capture): a log whose
 // second half repeats the first (random_intervals() as STEP/DIR bytes),
-// cut into blocks of half its ticks. From -L 3 the second block's match
-// reads the first block's ticks (the frame's window; coding byte 126), and
-// the frame is under 70 % of the same frame without a window; at -L 1
-// (plain coding, no match) no block has the bit. Both decode.
+// cut into blocks of half its ticks. The second block's match reads the
+// first block's ticks (the frame's window; coding byte 126 from -L 3, 196
+// at -L 1), and the frame is under 70 % of the same frame without a
+// window. Both decode.
 TEST(TickBlock, JobRunAgainInTheNextBlockIsFoundThroughTheWindow) {
     std::string log;
     for (const Step s : random_intervals().steps)  // STEP x = 1, DIR x = 2, STEP y = 4, DIR y = 8
@@ -513,16 +517,17 @@ TEST(TickBlock, JobRunAgainInTheNextBlockIsFoundThroughTheWindow) {
         auto z = compress(twice, opt);
         ASSERT_TRUE(z.ok()) << z.error().message;
         EXPECT_EQ(tick_blocks(*z), 2u);
-        const int windowed = static_cast<int>(coding_byte(TickCoding::mixed_sure, stz::kTickFlags | stz::kTickWindow));
-        EXPECT_EQ(tick_blocks(*z, -1, windowed), level >= 3 ? 1u : 0u) << "level " << level;
+        const int windowed = static_cast<int>(coding_byte(level >= 3 ? TickCoding::mixed_sure : TickCoding::plain,
+                                                          stz::kTickFlags | stz::kTickWindow));
+        EXPECT_EQ(tick_blocks(*z, -1, windowed), 1u) << "level " << level;
         auto back = decompress(*z);
         ASSERT_TRUE(back.ok()) << back.error().message;
         EXPECT_EQ(*back, twice);
-        if (level < 3) continue;
         opt.window_log = 0;
         auto alone = compress(twice, opt);
         ASSERT_TRUE(alone.ok()) << alone.error().message;
-        EXPECT_LT(z->size() * 10, alone->size() * 7) << z->size() << " bytes against " << alone->size();
+        EXPECT_LT(z->size() * 10, alone->size() * 7) << "level " << level << ": " << z->size() << " bytes against "
+                                                     << alone->size();
     }
 }
 
@@ -564,14 +569,16 @@ TEST(TickBlock, UnknownCodingShortStreamAndTrailingBytesAreCorruptAtTheirByte) {
     Block out;
     stz::BlockCounts counts;
     for (const bool irq : {false, true}) {  // the interrupt block's header reads the same
-        // Coding 3, the plain coding with the guess, guided, match or window
-        // flag, the window flag without the match flag, a flag above them.
+        // Coding 3, the plain coding with the guess, guided or match flag, a
+        // mixed one with the refine flag, the window flag without the match
+        // and refine flags.
         for (const unsigned byte : {3u, stz::kTickGuess, stz::kTickRestart | stz::kTickGuess, stz::kTickGuided,
                                     stz::kTickRestart | stz::kTickGuided, stz::kTickMatch,
                                     stz::kTickRestart | stz::kTickMatch, stz::kTickWindow | 2u,
                                     stz::kTickWindow | stz::kTickRestart | stz::kTickGuided | 1u,
-                                    stz::kTickWindow | stz::kTickMatch | stz::kTickRestart, 128u | 2u,
-                                    128u | stz::kTickFlags | 1u}) {
+                                    stz::kTickWindow | stz::kTickMatch | stz::kTickRestart, stz::kTickRefine | 2u,
+                                    stz::kTickFlags | 1u, stz::kTickWindow | stz::kTickRestart,
+                                    stz::kTickRefine | stz::kTickMatch | stz::kTickRestart}) {
             std::string bad = irq ? stz::write_interrupt_block(b) : payload;
             bad[1] = static_cast<char>(byte);
             auto coding = stz::read_tick_block(bad, 3, true, out, counts, "P");

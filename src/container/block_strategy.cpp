@@ -1202,8 +1202,7 @@ void begin_contribution(BlockJob& job, const EncoderSettings& s) {
     std::uint64_t steps = 0;
     for (const Chain& c : job.block.chains) steps += c.steps.size();
     w->weight = steps + job.block.chains.size();
-    // (only the mixed codings read them)
-    if (s.timed && s.level >= kMixedTickLevel) w->ticks = tick_masks(job.block);
+    if (s.timed) w->ticks = tick_masks(job.block);
     job.contribution = std::move(w);
 }
 
@@ -1392,15 +1391,16 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     // cannot code the block.
     if (s.timed && can_represent) {
         const TickCoding coding = s.level >= kMixedTickLevel ? TickCoding::mixed_sure : TickCoding::plain;
-        // From the window's ticks where it holds some (the mixed codings'
-        // match; the window bit).
-        const WindowView* w = job.window && coding != TickCoding::plain && has_ticks(*job.window) ? job.window : nullptr;
+        // From the window's ticks where it holds some (the match's; the
+        // window bit).
+        const WindowView* w = job.window && has_ticks(*job.window) ? job.window : nullptr;
         auto write = [&](TickCoding c, bool irq) {
             const unsigned flags = kTickFlags | (w ? kTickWindow : 0u);
             return irq ? write_interrupt_block(block, c, flags, w) : write_tick_block(block, c, flags, w);
         };
         const bool use_irq = coding == TickCoding::plain ? timed.irq : timed.irq_mixed;
-        std::string tick = coding == TickCoding::plain && !timed.plain.empty() ? timed.plain : write(coding, use_irq);
+        std::string tick =
+            coding == TickCoding::plain && !timed.plain.empty() && !w ? timed.plain : write(coding, use_irq);
         if (coding != TickCoding::plain && (tick.empty() || tick.size() > kMaxBlockPayload))
             tick = write(TickCoding::plain, timed.irq);
         // The thorough levels code the other one whole too, the smaller

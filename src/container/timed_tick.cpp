@@ -548,7 +548,7 @@ public:
     /// After a tick of step mask `m`: the match follows or ends, the tick
     /// joins the history, and at a step event the tables are consulted
     /// and updated.
-    void push(unsigned m) {
+    [[gnu::always_inline]] void push(unsigned m) {
         const std::uint64_t t = hist_.size();
         if (ptr_ >= 0 && hist_[static_cast<std::size_t>(ptr_)] == m) {
             ++ptr_;
@@ -558,7 +558,12 @@ public:
             len_ = 0;
         }
         hist_.push_back(static_cast<std::uint8_t>(m));
-        if (m == 0) return;
+        if (m != 0) event(m, t);
+    }
+
+private:
+    // A step event of mask m at tick t: the tables.
+    void event(unsigned m, std::uint64_t t) {
         events_[count_ % kRing] = (std::min<std::uint64_t>(t - last_, 1023) << 6) | m;
         ++count_;
         last_ = t;
@@ -584,7 +589,6 @@ public:
         }
     }
 
-private:
     static constexpr std::uint64_t kRing = 16;
     static constexpr std::uint64_t kMaxReserve = std::uint64_t{1} << 24;
 
@@ -636,17 +640,16 @@ public:
     /// (the followers' lines restart at their last 1 when they break) and
     /// kTickGuess (mixed codings: their lines guess the next letter).
     /// kTickMatch (mixed codings: a match model over the block's `ticks`,
-    /// after the ticks of `window` with kTickWindow).
+    /// after the ticks of `window` with kTickWindow), kTickRefine (the plain
+    /// coding: the same match, refining the step decisions' contexts).
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks,
               const WindowView* window)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
           restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
-          guided_((flags & kTickGuided) != 0) {
-        if constexpr (kMixedIo<Io>) {
-            io_.sure = sure_ ? kSure : 0;
-            if (flags & kTickMatch)
-                match_ = std::make_unique<TickMatch>(ticks, (flags & kTickWindow) ? window : nullptr);
-        }
+          guided_((flags & kTickGuided) != 0), refine_((flags & kTickRefine) != 0) {
+        if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
+        if (flags & (kTickMatch | kTickRefine))
+            match_ = std::make_unique<TickMatch>(ticks, (flags & kTickWindow) ? window : nullptr);
     }
 
     /// A chain's start: every follower forgets.
@@ -759,6 +762,15 @@ public:
                 }
             }
             Prob& pr = t_.axis(ua).step[ctx];
+            // The refine flag (the plain coding): a match of kGuideLength
+            // ticks or more codes the decision in its own context, by the
+            // match's state and the context's probability in sixteenths of
+            // the stretched domain; the context adapts too.
+            Prob* coded = &pr;
+            if (refine_ && ms != 0 && match_->length() >= TickMatch::kGuideLength) {
+                const auto q = static_cast<std::uint64_t>((stretch(65536u - pr.p) + 2048) >> 8);
+                coded = &refined_[ua][static_cast<std::size_t>((ms - 1) * 16 + q)];
+            }
             // The match flag with coding 2: a sure decision that a match of
             // kUnsureLength ticks or more contradicts is mixed.
             bool unsure = false;
@@ -768,7 +780,8 @@ public:
                     if (unsure) io_.sure = 0;
                 }
             }
-            const int step = io_.bit(pr, static_cast<int>((mask >> a) & 1u));
+            const int step = io_.bit(*coded, static_cast<int>((mask >> a) & 1u));
+            if (coded != &pr) update(pr, step);
             if constexpr (kMixedIo<Io>) {
                 if (unsure) io_.sure = kSure;
             }
@@ -885,7 +898,10 @@ private:
     bool restart_;  // the coding flag kTickRestart
     bool guessing_;  // the coding flag kTickGuess
     bool guided_;    // the coding flag kTickGuided
-    std::unique_ptr<TickMatch> match_;  // the coding flag kTickMatch (mixed codings)
+    bool refine_;    // the coding flag kTickRefine
+    std::unique_ptr<TickMatch> match_;  // the coding flag kTickMatch (mixed codings) or kTickRefine (plain)
+    // kTickRefine: per axis, the contexts by the match's state (1..36) and q (0..15).
+    std::array<std::array<Prob, 36 * 16>, kMinor> refined_{};
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
@@ -944,7 +960,7 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     std::string out;
     put_u8(out, subtype);
     flags &= tick_flags(coding);
-    if (!(flags & kTickMatch) || !window || !has_ticks(*window)) flags &= ~kTickWindow;
+    if (!(flags & (kTickMatch | kTickRefine)) || !window || !has_ticks(*window)) flags &= ~kTickWindow;
     put_u8(out, static_cast<unsigned>(coding) | flags);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
@@ -990,7 +1006,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     const bool windows = subtype == kInterruptSubtype;
     const auto is = [&](TickCoding c) { return (coding & ~tick_flags(c)) == static_cast<unsigned>(c); };
     if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)) ||
-        ((coding & kTickWindow) && !(coding & kTickMatch)))
+        ((coding & kTickWindow) && !(coding & (kTickMatch | kTickRefine))))
         return make_error(Errc::corrupt, where + " byte 1: unknown coding of " +
                                              (windows ? "an interrupt block" : "a tick block"));
     if ((coding & kTickWindow) && !window)

@@ -53,19 +53,27 @@ inline constexpr unsigned kTickGuided = 16;
 /// coding 2 a sure decision that the match contradicts goes to the mixer
 /// (docs/FORMAT.md 1.13, "Match"). The blocks without it decode as before.
 inline constexpr unsigned kTickMatch = 32;
-/// The coding byte's flags the encoder sets on every block (kTickGuess,
-/// kTickGuided and kTickMatch only on a mixed coding).
-inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch;
-/// Flag of the coding byte, with the match flag only: the match starts from
-/// the ticks of the window's blocks, as if they had been coded before the
-/// block's first tick; the block is flagged `window` (docs/FORMAT.md 1.13,
-/// "Match", and 1.8 "Ticks"). The encoder sets it when the window holds
-/// ticks and the block comes out smaller.
+/// Flag of the coding byte, with the plain coding only: the match of
+/// kTickMatch, whose state refines each step decision's context once the
+/// match is long: the decision is coded in an adaptive context of that
+/// state and of the context's probability, and both adapt
+/// (docs/FORMAT.md 1.13, "Match"). The blocks without it decode as before.
+inline constexpr unsigned kTickRefine = 128;
+/// The coding byte's flags the encoder sets on every block (those that go
+/// with its coding: tick_flags()).
+inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickRefine;
+/// Flag of the coding byte, with the match or refine flag only: the match
+/// starts from the ticks of the window's blocks, as if they had been coded
+/// before the block's first tick; the block is flagged `window`
+/// (docs/FORMAT.md 1.13, "Match", and 1.8 "Ticks"). The encoder sets it
+/// where the window holds ticks.
 inline constexpr unsigned kTickWindow = 64;
-/// The flags that may go with `coding`: the guess, guided, match and window
-/// flags with a mixed one only (the window flag with the match flag only).
+/// The flags that may go with `coding`: the guess, guided and match flags
+/// with a mixed one, the refine flag with the plain one, the window flag
+/// with either (and the match or refine flag only).
 inline constexpr unsigned tick_flags(TickCoding coding) {
-    return coding == TickCoding::plain ? kTickRestart : kTickFlags | kTickWindow;
+    return coding == TickCoding::plain ? kTickRestart | kTickRefine | kTickWindow
+                                       : kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickWindow;
 }
 /// Whether the window holds ticks (tick_masks()) for the window flag.
 bool has_ticks(const WindowView& window);
@@ -73,9 +81,9 @@ bool has_ticks(const WindowView& window);
 /// Payload of a tick block for `block` (subtype and coding bytes first);
 /// empty when the block cannot be one: a step that does not advance time
 /// (axis 0) by exactly one, or more than kMaxAxes - 1 axes besides time.
-/// `flags`: of kTickRestart, kTickGuess, kTickGuided, kTickMatch and
-/// kTickWindow (all but the first dropped on the plain coding; the window
-/// flag dropped without the match flag or without ticks in `window`).
+/// `flags`: of kTickFlags and kTickWindow, those that do not go with
+/// `coding` dropped (tick_flags()), and the window flag without the match
+/// or refine flag or without ticks in `window`.
 std::string write_tick_block(const Block& block, TickCoding coding = TickCoding::plain, unsigned flags = kTickFlags,
                              const WindowView* window = nullptr);
 

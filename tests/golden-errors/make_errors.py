@@ -447,6 +447,17 @@ files.update({
     'v2_tick_window_unflagged': ('corrupt', 'byte %d (block 1) payload byte 1' % w_second,
                                  reseal2(edit(twin, w_second, twin[w_second] & ~0x20), w_second)),
 })
+# The refine bit (128, FORMAT.md 1.13 "Match"), from
+# tests/golden/v2/tick_refine.steps.stz: a tick block of coding byte 132
+# (coding 0 with the restart and refine bits), then one of 196 (and the
+# window bit) flagged `window`.
+tref, f_payload = first_extended_block('tick_refine.steps.stz', 2, 132)
+files.update({
+    # The bit with a mixed coding (tick_window's first block, 62 + 128): an unknown coding.
+    'v2_tick_refine_mixed': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(twin, w_payload + 1, 190))),
+    # Coding 0 with the window bit but neither the match nor the refine bit (68).
+    'v2_tick_window_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tref, f_payload + 1, 68))),
+})
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
 rcm, r_payload = first_extended_block('raw_cm.hpgl.stz', 3, 0)
