@@ -169,7 +169,7 @@ bool raw_cm_may_win(std::string_view raw, std::size_t best);
 void choose_block(BlockJob& job, const EncoderSettings& s);
 
 /// Before the first pass, with a window: what the block adds to it whatever
-/// its type (its weight; a timed frame's, its ticks from the mixed levels).
+/// its type (its weight; a timed frame's, its ticks).
 void begin_contribution(BlockJob& job, const EncoderSettings& s);
 /// After the first pass: a block that became a raw one adds no ticks (its
 /// contribution's ticks_dropped is set).

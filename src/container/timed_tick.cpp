@@ -762,10 +762,10 @@ public:
                 }
             }
             Prob& pr = t_.axis(ua).step[ctx];
-            // The refine flag (the plain coding): a match of kGuideLength
-            // ticks or more codes the decision in its own context, by the
-            // match's state and the context's probability in sixteenths of
-            // the stretched domain; the context adapts too.
+            // The refine flag (the plain coding): under a match of
+            // kGuideLength ticks or more the decision is coded in a context
+            // of the match's state and of its own context's probability (in
+            // sixteenths of the stretched domain), and both adapt.
             Prob* coded = &pr;
             if (refine_ && ms != 0 && match_->length() >= TickMatch::kGuideLength) {
                 const auto q = static_cast<std::uint64_t>((stretch(65536u - pr.p) + 2048) >> 8);
