@@ -1199,9 +1199,7 @@ Result<void> choose_frame_settings(const Block& first, EncoderSettings& s) {
 void begin_contribution(BlockJob& job, const EncoderSettings& s) {
     if (s.window_log == 0) return;
     auto w = std::make_shared<WindowBlock>();
-    std::uint64_t steps = 0;
-    for (const Chain& c : job.block.chains) steps += c.steps.size();
-    w->weight = steps + job.block.chains.size();
+    w->weight = step_count(job.block) + job.block.chains.size();
     if (s.timed) w->ticks = tick_masks(job.block);
     job.contribution = std::move(w);
 }
@@ -1215,9 +1213,15 @@ void end_contribution(BlockJob& job) {
 namespace {
 // What the block `job` chose adds to the window (with one): its symbols
 // when a block needs them (compress.cpp), its items after the second pass.
-void add_contribution(BlockJob& job, const EncoderSettings& s) {
-    if (s.window_log == 0 || !job.contribution) return;
-    job.contribution->first_type = job.type;
+void add_contribution(BlockJob& job) {
+    if (job.contribution) job.contribution->first_type = job.type;
+}
+
+// The record of a tick or interrupt block's payload, flagged `window` when
+// its coding byte has the window bit.
+std::string tick_record(unsigned flags, const std::string& tick) {
+    const bool windowed = tick.size() >= 2 && (static_cast<unsigned char>(tick[1]) & kTickWindow);
+    return make_stored_record(kExtended, flags | (windowed ? kFlagWindow : 0u), tick);
 }
 }  // namespace
 
@@ -1266,7 +1270,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
         job.cm_light = !cm_first;
         job.type = kStepModel;
         job.order = 1;
-        add_contribution(job, s);
+        add_contribution(job);
         if (known_cm && s.cm_first_model) take_cm_first(job, *s.cm_first_model);
         return;
     }
@@ -1309,7 +1313,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             job.table_late = true;
             job.type = kTable;
             job.cut = std::move(segs);
-            add_contribution(job, s);
+            add_contribution(job);
             return;
         }
         if (!s.thorough && !s.timed) {
@@ -1411,9 +1415,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             const std::string other = write(coding, !use_irq);
             if (!other.empty() && other.size() < tick.size()) tick = other;
         }
-        const bool windowed = tick.size() >= 2 && (static_cast<unsigned char>(tick[1]) & kTickWindow);
-        if (!tick.empty() && tick.size() <= kMaxBlockPayload &&
-            consider(kTickBlock, make_stored_record(kExtended, job.flags | (windowed ? kFlagWindow : 0u), tick)))
+        if (!tick.empty() && tick.size() <= kMaxBlockPayload && consider(kTickBlock, tick_record(job.flags, tick)))
             job.cut.clear();
     }
     // The step model decodes a few times slower than a table block: below
@@ -1518,7 +1520,7 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
     if (type != kSegmentModel && type != kTable && type != kExtended) job.cut.clear();
     if (type != kTable) job.table_keys = {};
     if (type == kRaw) job.stats = {};
-    add_contribution(job, s);
+    add_contribution(job);
 }
 
 namespace {
@@ -1684,17 +1686,16 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
             std::none_of(window.begin(), window.end(), [](const auto& b) { return b->ticks_dropped; }))
             return;
         const unsigned coding = static_cast<unsigned char>(rec.payload[1]);
-        const auto c = static_cast<TickCoding>(coding & ~(kTickFlags | kTickWindow));
+        const auto c = static_cast<TickCoding>(coding & ~kTickAllFlags);
         const std::string tick = static_cast<unsigned char>(rec.payload[0]) == kInterruptSubtype
                                      ? write_interrupt_block(job.block, c, coding, &window)
                                      : write_tick_block(job.block, c, coding, &window);
-        const bool windowed = tick.size() >= 2 && (static_cast<unsigned char>(tick[1]) & kTickWindow);
         if (tick.empty() || tick.size() > kMaxBlockPayload) {
             job.error = make_error(Errc::limit, s.source + ": chain " + std::to_string(job.first_chain + 1) +
                                                     ": its block's tick block exceeds the payload limit");
             return;
         }
-        job.record = make_stored_record(kExtended, job.flags | (windowed ? kFlagWindow : 0u), tick);
+        job.record = tick_record(job.flags, tick);
         return;
     }
     if (job.type == kExtended) {

@@ -701,7 +701,7 @@ public:
             const int wa = windows_ && i > 0 ? bres_[ua].admits() : 0;
             const int ba = !windows_ ? (i > 0 && lead_step ? bres_[ua].admits() : 0) : window_context(i, wa, lead_step, ua);
             const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
-            // The match flag (mixed codings): the match's state for this axis.
+            // The match or refine flag: the match's state for this axis.
             const std::uint64_t ms = match_ ? match_->state(a) : 0;
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
@@ -1029,8 +1029,8 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         else return Io(payload.substr(base));
     }();
     TickTables& t = *tables;
-    constexpr unsigned kAll = kTickFlags | kTickWindow;
-    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kAll), coding & kAll, nsteps, window);
+    TickCoder<Io> coder(io, t, axes, windows, static_cast<TickCoding>(coding & ~kTickAllFlags), coding & kTickAllFlags,
+                        nsteps, window);
     start_output(out, expand, axes, std::move(*layout));
     auto fail = [&](const char* what) {
         return make_error(Errc::corrupt, where + " byte " + std::to_string(base + io.rc.pos()) + ": " + what);
@@ -1078,7 +1078,7 @@ Result<void> read_tick_block(std::string_view payload, int axes, bool expand, Bl
                              const std::string& where, const WindowView* window) {
     // The coding byte picks the coder (an unknown one is reported by the plain reader).
     const unsigned coding =
-        payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~(kTickFlags | kTickWindow) : 0;
+        payload.size() >= 2 ? static_cast<unsigned char>(payload[1]) & ~kTickAllFlags : 0;
     if (coding == static_cast<unsigned>(TickCoding::mixed) || coding == static_cast<unsigned>(TickCoding::mixed_sure))
         return read_ticks<MixDecIo>(payload, axes, expand, out, counts, where, window);
     return read_ticks<DecIo>(payload, axes, expand, out, counts, where, window);

@@ -68,6 +68,8 @@ inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided |
 /// (docs/FORMAT.md 1.13, "Match", and 1.8 "Ticks"). The encoder sets it
 /// where the window holds ticks.
 inline constexpr unsigned kTickWindow = 64;
+/// Every flag of the coding byte: its bits above the coding.
+inline constexpr unsigned kTickAllFlags = kTickFlags | kTickWindow;
 /// The flags that may go with `coding`: the guess, guided and match flags
 /// with a mixed one, the refine flag with the plain one, the window flag
 /// with either (and the match or refine flag only).
