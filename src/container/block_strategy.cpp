@@ -1685,11 +1685,12 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
         if (rec.payload.size() < 2 || !(static_cast<unsigned char>(rec.payload[1]) & kTickWindow) ||
             std::none_of(window.begin(), window.end(), [](const auto& b) { return b->ticks_dropped; }))
             return;
+        const unsigned sub = static_cast<unsigned char>(rec.payload[0]);
         const unsigned coding = static_cast<unsigned char>(rec.payload[1]);
         const auto c = static_cast<TickCoding>(coding & ~kTickAllFlags);
-        const std::string tick = static_cast<unsigned char>(rec.payload[0]) == kInterruptSubtype
-                                     ? write_interrupt_block(job.block, c, coding, &window)
-                                     : write_tick_block(job.block, c, coding, &window);
+        const unsigned flags = coding | (sub == kTickPlannerSubtype || sub == kInterruptPlannerSubtype ? kTickPlanner : 0u);
+        const std::string tick = is_interrupt_subtype(sub) ? write_interrupt_block(job.block, c, flags, &window)
+                                                           : write_tick_block(job.block, c, flags, &window);
         if (tick.empty() || tick.size() > kMaxBlockPayload) {
             job.error = make_error(Errc::limit, s.source + ": chain " + std::to_string(job.first_chain + 1) +
                                                     ": its block's tick block exceeds the payload limit");

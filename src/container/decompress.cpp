@@ -286,8 +286,7 @@ private:
                 // a timed or tick block, or a table block (read_table_block checks the rest).
                 const unsigned char sub = payload.empty() ? 0xFF : static_cast<unsigned char>(payload[0]);
                 const bool ext_table = b.type == kExtended && sub == kTableSubtype;
-                if (b.type == kExtended && !ext_table && sub != kTimedSubtype && sub != kTickSubtype &&
-                    sub != kInterruptSubtype)
+                if (b.type == kExtended && !ext_table && sub != kTimedSubtype && !is_tick_subtype(sub))
                     return make_error(Errc::corrupt, what + " byte 0: unknown subtype of an extended block");
                 if (b.type == kExtended && !ext_table && hdr_.format != InputFormat::timed)
                     return make_error(Errc::corrupt, what + " byte 0: a timed block in a frame that is not timed");

@@ -17,6 +17,7 @@
 // Not thread-safe: a predictor is made, used and destroyed by one thread.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -43,8 +44,11 @@ namespace stepzip::stz {
 inline constexpr int kMixBaseModels = 6;
 inline constexpr int kMixMaxModels = 8;
 inline constexpr int kMixMatchModels = 9;
-/// log2 of the entries of each hashed table.
+/// log2 of the entries of each hashed table; a predictor may take up to
+/// kMixMaxTableBits (MixGuide::table_bits: the tick block's planner model
+/// on large blocks, docs/FORMAT.md 1.16).
 inline constexpr int kMixTableBits = 20;
+inline constexpr int kMixMaxTableBits = 21;
 /// Weight sets of each of the two mixers: 16 fields x 16 classes (mixer 1:
 /// the slot's low 4 bits; mixer 2: the primary prediction's confidence).
 inline constexpr int kMixSets = 256;
@@ -60,6 +64,8 @@ struct MixGuide {
     int rows = 0;
     std::int64_t rate = 3;  // a weight moves by input * error * rate / 2^16
     int apm_rate = 7;       // a map's point moves by 1/2^apm_rate of its error
+    int table_bits = kMixTableBits;  // log2 of each hashed table's entries used
+    int sure_rows = 0;               // rows of the sure decisions' map (sure_row())
 };
 
 namespace mixdetail {
@@ -203,7 +209,8 @@ private:
     std::size_t size_ = 0;
 };
 
-// The hashed tables of all models: kMixMatchModels << kMixTableBits entries,
+// The hashed tables of all models: kMixMatchModels << kMixMaxTableBits entries
+// (a predictor of fewer table bits uses the first 2^bits of each model's part),
 // all zero (p = 32768, n = 0) when a predictor takes them. Dirty flags of
 // 2^kChunkBits entries (4 KiB) tell which parts a predictor wrote, so that
 // giving the tables back clears only those: a block dirties at most eight
@@ -213,7 +220,7 @@ private:
 // block of a few thousand segments touches every 4 KiB page of the 32 MiB,
 // 8192 page faults (most of -L 19's system time on a 25 KB file) against 16.
 struct HashedTables {
-    static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMatchModels) << kMixTableBits;
+    static constexpr std::size_t kEntries = static_cast<std::size_t>(kMixMatchModels) << kMixMaxTableBits;
     static constexpr int kChunkBits = 10;
     static constexpr std::size_t kChunks = kEntries >> kChunkBits;
 
@@ -315,8 +322,9 @@ public:
     /// its primary context's index in it).
     /// `guide`: MixGuide's rows and rates.
     MixPredictor(const Prob* base, int models, const MixGuide& guide = {})
-        : n_(models), rate_(guide.rate), apm_rate_(guide.apm_rate), base_(base),
-          apm_(static_cast<std::size_t>(kApmRows + guide.rows) * 33), rows2_(guide.rows) {
+        : n_(models), bits_(guide.table_bits), rate_(guide.rate), apm_rate_(guide.apm_rate), base_(base),
+          apm_(static_cast<std::size_t>(kApmRows + guide.rows + guide.sure_rows) * 33), rows2_(guide.rows),
+          sure_rows_(guide.sure_rows) {
         mixdetail::HashedTables& shared = mixdetail::thread_tables();
         if (shared.busy) {
             own_ = std::make_unique<mixdetail::HashedTables>();
@@ -331,9 +339,10 @@ public:
             std::int32_t* w = &weights_[static_cast<std::size_t>(s) * kInputs];
             w[0] = kPrimaryWeight;
             for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
+            w[kDirect] = kModelWeight;
         }
-        // Every row of the map starts the same.
-        for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows + rows2_); ++r)
+        // Every row of the maps starts the same.
+        for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows + rows2_ + sure_rows_); ++r)
             std::memcpy(&apm_[r * 33], mixdetail::kApmFirstRow.data(), sizeof mixdetail::kApmFirstRow);
     }
     MixPredictor(const MixPredictor&) = delete;
@@ -351,7 +360,32 @@ public:
     /// ends a guide().
     void select(int field) noexcept {
         field_ = field & 15;
-        set1_ = set2_ = row2_ = -1;
+        set1_ = set2_ = row2_ = sure_row_ = -1;
+        x_[kDirect] = 0;
+    }
+    /// Until the next select(): the mixers' direct input, a stretched
+    /// probability of a 1 (-2047..2047) that the coder computed itself (the
+    /// tick block's planner model); 0 otherwise, which leaves the mix as
+    /// without it.
+    void direct(std::int32_t stretched) noexcept { x_[kDirect] = stretched; }
+    /// Until the next select(): a sure decision (mix_sure()) is coded with
+    /// its context's probability and row `row` (0..MixGuide::sure_rows-1)
+    /// of the sure decisions' map averaged, and the map learns (sure_p(),
+    /// sure_train()); without it, with its context's alone.
+    void sure_row(int row) noexcept { sure_row_ = sure_rows_ > 0 ? row % sure_rows_ : -1; }
+    bool sure_mapped() const noexcept { return sure_row_ >= 0; }
+    /// The probability (1..65535) of a 1 of a sure decision of context
+    /// `pr` by sure_row()'s row (when sure_mapped()).
+    [[gnu::always_inline]] std::uint32_t sure_p(const Prob& pr) noexcept {
+        const std::int32_t p1 = static_cast<std::int32_t>(65536u - pr.p);
+        const std::int32_t r = mixdetail::apm_refine(
+            &apm_[static_cast<std::size_t>(kApmRows + rows2_ + sure_row_) * 33], stretch(65536u - pr.p), sure_at_);
+        return static_cast<std::uint32_t>(std::clamp((p1 + r) >> 1, 1, 65535));
+    }
+    /// Trains the row sure_p() read, and the context, on the coded bit.
+    [[gnu::always_inline]] void sure_train(Prob& pr, int bit) noexcept {
+        stz::update(pr, bit);
+        mixdetail::apm_train(sure_at_, bit, kSureRate);
     }
     /// Until the next select(): mixer 1 mixes with weight set `set1` and
     /// mixer 2 with `set2` (each 0..kMixSets-1 of its mixer) in place of
@@ -386,8 +420,8 @@ private:
         x_[0] = stretch(65536u - pr.p);
         for (int k = 0; k < N; ++k) {
             const std::uint64_t h = (hash_[static_cast<std::size_t>(k)] ^ (group * kHashB)) * kHashA;
-            const std::size_t i = ((static_cast<std::size_t>(k) << kMixTableBits) |
-                                   (static_cast<std::size_t>(h >> (64 - (kMixTableBits - 4))) << 4)) | low;
+            const std::size_t i = ((static_cast<std::size_t>(k) << kMixMaxTableBits) |
+                                   (static_cast<std::size_t>(h >> (64 - (bits_ - 4))) << 4)) | low;
             entry_[static_cast<std::size_t>(k)] = &tables_[i];
             dirty_[i >> mixdetail::HashedTables::kChunkBits] = 1;
             x_[static_cast<std::size_t>(k) + 1] = stretch(65536u - tables_[i].p());
@@ -437,6 +471,7 @@ private:
     [[gnu::always_inline]] std::int32_t dot(const std::int32_t* w) const noexcept {
         std::int64_t d = 0;
         for (int k = 0; k <= N + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
+        d += static_cast<std::int64_t>(w[kDirect]) * x_[kDirect];
         d >>= 16;
         return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
     }
@@ -445,15 +480,23 @@ private:
     template <int N>
     [[gnu::always_inline]] void train(std::int32_t* w, std::int32_t out, int bit) noexcept {
         const std::int64_t err = ((static_cast<std::int64_t>(bit) << 16) - out) * rate_;
-        for (int k = 0; k <= N + 1; ++k) {
+        const auto step = [&](int k) {
             std::int64_t v = w[k] + ((x_[static_cast<std::size_t>(k)] * err) >> 16);
             if (v > kMaxWeight) v = kMaxWeight;
             if (v < -kMaxWeight) v = -kMaxWeight;
             w[k] = static_cast<std::int32_t>(v);
-        }
+        };
+        for (int k = 0; k <= N + 1; ++k) step(k);
+        step(kDirect);
     }
 
-    static constexpr int kInputs = kMixMatchModels + 2;  // primary, models, bias
+    // Inputs: the primary, the models, the bias, and the direct input last
+    // (its weight at kDirect whatever the models).
+    static constexpr int kDirect = kMixMatchModels + 2;
+    static constexpr int kInputs = kMixMatchModels + 3;
+    // The sure decisions' map learns at 1/2^kSureRate (chosen on the timed
+    // streams of docs/benchmarks.md "Timed streams: the planner model").
+    static constexpr int kSureRate = 8;
     // Chosen on corpora/glyphs/dejavu-8.fc, plotter/hershey-grbl.fc and
     // random/walk-8.fc (docs/benchmarks.md).
     static constexpr std::int32_t kPrimaryWeight = 40960;  // 0.625
@@ -461,7 +504,8 @@ private:
     static constexpr std::int32_t kMaxWeight = 1 << 22;
     static constexpr std::uint64_t kHashA = 0x9E3779B97F4A7C15ull, kHashB = 0xD6E8FEB86659FD93ull;
 
-    int n_;  // hashed models in use
+    int n_;     // hashed models in use
+    int bits_;  // MixGuide::table_bits
     std::int64_t rate_;  // MixGuide
     int apm_rate_;
 
@@ -470,8 +514,11 @@ private:
     mixdetail::HashedTables* store_ = nullptr;
     mixdetail::HashedProb* tables_ = nullptr;
     std::uint8_t* dirty_ = nullptr;
-    std::vector<std::uint16_t> apm_;  // kApmRows rows by slot, then MixGuide::rows for guide()
+    // kApmRows rows by slot, then MixGuide::rows for guide(), then
+    // MixGuide::sure_rows for sure_row()
+    std::vector<std::uint16_t> apm_;
     int rows2_;
+    int sure_rows_;
     std::array<std::int32_t, static_cast<std::size_t>(2 * kMixSets) * kInputs> weights_{};
     std::array<std::uint64_t, kMixMatchModels> hash_{};
     std::array<std::int32_t, kInputs> x_{};
@@ -481,8 +528,10 @@ private:
     std::int32_t out1_ = 32768, out2_ = 32768;
     std::uint16_t* apm_at_ = nullptr;
     std::uint16_t* apm2_at_ = nullptr;
+    std::uint16_t* sure_at_ = nullptr;
     int field_ = 0;
     int set1_ = -1, set2_ = -1, row2_ = -1;  // guide()
+    int sure_row_ = -1;                       // sure_row()
 };
 
 /// Sure decisions (the tick block's coding 2, docs/FORMAT.md 1.13): with
@@ -507,7 +556,12 @@ struct MixEncIo {
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int b) {
         if (mix_sure(p, sure)) {
-            rc.encode(p, b);
+            if (m->sure_mapped()) {
+                rc.encode_p(65536u - m->sure_p(p), b);
+                m->sure_train(p, b);
+            } else {
+                rc.encode(p, b);
+            }
             return b;
         }
         rc.encode_p(65536u - m->predict(p), b);
@@ -528,7 +582,12 @@ struct MixDecIo {
     std::uint32_t sure = 0;  // see mix_sure()
     void field(int k) { m->select(k); }
     [[gnu::always_inline]] int bit(Prob& p, int) {
-        if (mix_sure(p, sure)) return rc.decode(p);
+        if (mix_sure(p, sure)) {
+            if (!m->sure_mapped()) return rc.decode(p);
+            const int b = rc.decode_p(65536u - m->sure_p(p));
+            m->sure_train(p, b);
+            return b;
+        }
         const int b = rc.decode_p(65536u - m->predict(p));
         m->update(p, b);
         return b;

@@ -32,7 +32,7 @@ Result<void> read_extended_block(std::string_view payload, Profile p, int axes, 
                                  BlockCounts& counts, const std::string& where, const WindowView* window,
                                  SegmentItems* items) {
     const unsigned subtype = payload.empty() ? 0xFFu : static_cast<unsigned char>(payload[0]);
-    if (subtype == kTickSubtype || subtype == kInterruptSubtype) {
+    if (is_tick_subtype(subtype)) {
         if (items) *items = SegmentItems{};
         return read_tick_block(payload, axes, expand, out, counts, where, window);
     }

@@ -31,6 +31,8 @@ namespace dss = stepzip::detail::dss;
 /// Chosen on corpora/timed/trapezoid-2axis, trapezoid-3axis and the Grbl
 /// stream (docs/benchmarks.md "Timed streams at -L 19: sure decisions").
 constexpr std::uint32_t kSure = 32;
+/// The model byte of subtypes 5 and 6: the planner model (kTickPlanner).
+constexpr unsigned kPlannerModel = 1;
 /// A segment followed is cut back to its longest suffix of at most
 /// kRebuild letters that is straight when it breaks, and when it reaches
 /// kMaxLine letters (the hull arithmetic stays far inside 64 bits).
@@ -58,8 +60,22 @@ static_assert(kGuidedCrossSets + 19 * 3 <= kMixSets);
 /// guessed letter and b, whose index is at most 8 · 4 + 3).
 constexpr int kGuidedMatchSets = kGuidedSets + 36;
 static_assert(kGuidedMatchSets + 36 <= kMixSets);
-/// The predictor of a block of coding byte (or flags) `coding`.
-MixGuide mix_guide(unsigned coding) { return (coding & kTickGuided) ? kGuide : MixGuide{}; }
+/// The planner model (kTickPlanner) with coding 2: rows of the sure
+/// decisions' map (by the planned letter 0..6, the admitted set 1..3, b,
+/// whether the axis is the leader and the match's predicted bit).
+constexpr int kSureRows = 7 * 4 * 4 * 2 * 3;
+/// The planner model: the blocks of at least 2^21 ticks take hashed tables
+/// of 2^21 entries (kMixMaxTableBits), the others 2^20.
+constexpr std::uint64_t kLargeTicks = std::uint64_t{1} << 21;
+/// The predictor of a block of flags `flags` and `ticks` ticks.
+MixGuide mix_guide(unsigned flags, std::uint64_t ticks) {
+    MixGuide g = (flags & kTickGuided) ? kGuide : MixGuide{};
+    if (flags & kTickPlanner) {
+        if ((flags & 3u) == static_cast<unsigned>(TickCoding::mixed_sure)) g.sure_rows = kSureRows;
+        if (ticks >= kLargeTicks) g.table_bits = kMixMaxTableBits;
+    }
+    return g;
+}
 
 /// A two-letter word read a letter at a time, as WordRecognizer reads it
 /// (the hull form of dss.hpp): whether a letter may follow with the word
@@ -169,6 +185,15 @@ public:
         if (left > r_) return -1;
         return std::max<std::int64_t>(left, 0) * kOne / r_;
     }
+    /// The share of the phases left that give a 1 next, as a probability of
+    /// a 1 in 1/65536 (0 and 65536 when sure); -1 when there is no line.
+    std::int64_t p1() const {
+        if (!valid_) return -1;
+        const std::int64_t theta = (s_ + 1) * kOne - r_ * (k_ + 1);
+        if (theta <= lo_) return 65536;
+        if (theta > hi_) return 0;
+        return (hi_ - theta + 1) * 65536 / (hi_ - lo_ + 1);
+    }
     /// The share of the phases left that give a 1 next, in buckets.
     int guess() const {
         if (!valid_) return 0;
@@ -203,10 +228,16 @@ class Follower {
 public:
     /// Empties the follower; `restart`: a line that breaks restarts at its
     /// last 1 (the coding flag kTickRestart); `guess`: the line guesses its
-    /// next letter (kTickGuess).
-    void reset(bool restart, bool guess) {
+    /// next letter (kTickGuess); `clock`: with `guess`, it keeps the segment
+    /// clock (the planner model, kTickPlanner).
+    void reset(bool restart, bool guess, bool clock = false) {
         restart_ = restart;
         guessing_ = guess;
+        clock_ = clock && guess;
+        next_.clear();
+        for (const std::uint16_t d : counted_) spacings_[d] = 0;  // (a chain's reset costs what it counted)
+        counted_.clear();
+        seg_ = best_ = 0;
         line_.reset();
         hist_.clear();
         start_ = 0;
@@ -226,6 +257,23 @@ public:
 
     /// The next letter as the line's guessed rate has it (RateGuess::guess()).
     int guess() const { return guess_.guess(); }
+    /// The planner model: the next letter as the line that the segment
+    /// clock started has it (RateGuess::guess(); 0: none).
+    int next_guess() const { return next_.guess(); }
+    /// The planner model: the probability of a 1 next (RateGuess::p1()) by
+    /// the line the clock started, else by the guess; -1: neither.
+    std::int64_t planned_p1() const {
+        const std::int64_t p = next_.p1();
+        return p >= 0 ? p : guess_.p1();
+    }
+    /// The planner model: the next letter's distance from the end of the
+    /// segment the clock expects, in half intervals between the last two
+    /// 1s, clamped, 1..9; 0 without a clock period or two 1s.
+    int clock_phase() const {
+        if (seg_ == 0 || ones_[1] < 0) return 0;
+        const std::int64_t into = n_ - line_start_ - seg_;
+        return 5 + clamp_int(dss::floor_div(2 * into, ones_[0] - ones_[1]), -4, 4);
+    }
     /// Where in the next event the line's counter crosses to its next 1
     /// (RateGuess::crossing()).
     std::int64_t crossing() const { return guess_.crossing(); }
@@ -278,6 +326,8 @@ public:
     }
 
     void push(int letter, int adm) {
+        const std::int64_t prev_start = line_start_;
+        bool broke = false;
         hist_.push_back(static_cast<std::uint8_t>(letter));
         ++since_break_;
         if (letter == 1) {
@@ -311,6 +361,7 @@ public:
             if (guessing_) restart_guess(predicted_rate());
             period_ = since_break_;
             since_break_ = 0;
+            broke = true;
         }
         if (letter == last_) {
             ++run_;
@@ -323,6 +374,7 @@ public:
             last_ = letter;
             run_ = 1;
         }
+        if (clock_) tick_clock(letter, broke, prev_start);
         if (start_ > 2 * kKeep) {  // forget the letters no rebuild can reach
             const std::size_t drop = start_ - kKeep;
             hist_.erase(hist_.begin(), hist_.begin() + static_cast<std::ptrdiff_t>(drop));
@@ -360,6 +412,55 @@ private:
         const std::size_t from = end - std::min(end - start_, kGuessReplay);
         for (std::size_t j = from; j < end; ++j) guess_.read(hist_[j]);
     }
+
+    // The planner model's segment clock, after letter `letter` was read
+    // (`broke`: its line broke and restarted; `prev_start`: the line's
+    // start before). A controller of fixed-time stepper segments (Grbl's
+    // 10 ms) changes an axis's rate at one of its steps about a segment
+    // after the last change: the clock's period is the most frequent
+    // distance between the starts of consecutive lines, and from the step
+    // within an interval and a half of that distance on, each step starts
+    // the line the next segment would run, at the rate carried on by the
+    // change from the last line to this one.
+    void tick_clock(int letter, bool broke, std::int64_t prev_start) {
+        if (broke) {
+            next_.clear();
+            const std::int64_t sp = line_start_ - prev_start;
+            if (prev_start > 0 && sp > 0 && sp < kMaxSpacing) count_spacing(sp);
+            return;
+        }
+        if (seg_ == 0) return;
+        const std::int64_t pos = n_ - 1 - line_start_;
+        const std::int64_t tol =
+            std::max<std::int64_t>(2, ones_[1] >= 0 ? 3 * (ones_[0] - ones_[1]) / 2 : seg_ / 16);
+        if (letter == 1 && pos >= seg_ - tol) {
+            const std::int64_t rc = line_.rate(), rp = rates_[0].rate;
+            const std::int64_t r =
+                rp > 0 && 2 * std::abs(rc - rp) <= rc ? std::clamp<std::int64_t>(2 * rc - rp, 1, RateGuess::kOne) : rc;
+            next_.start(r);
+            next_.read(1);
+        } else {
+            next_.read(letter);
+        }
+    }
+    // One more distance `sp` between line starts: the period becomes the
+    // mean of the distances within sp / 16 + 1 of it when they are at least
+    // as many as those around the period before.
+    void count_spacing(std::int64_t sp) {
+        if (spacings_.empty()) spacings_.assign(kMaxSpacing, 0);
+        if (spacings_[static_cast<std::size_t>(sp)]++ == 0) counted_.push_back(static_cast<std::uint16_t>(sp));
+        const std::int64_t w = sp / 16 + 1;
+        std::int64_t count = 0, sum = 0;
+        for (std::int64_t v = std::max<std::int64_t>(1, sp - w); v <= std::min(kMaxSpacing - 1, sp + w); ++v) {
+            count += spacings_[static_cast<std::size_t>(v)];
+            sum += v * spacings_[static_cast<std::size_t>(v)];
+        }
+        if (count >= best_) {
+            best_ = count;
+            seg_ = (sum + count / 2) / count;
+        }
+    }
+    static constexpr std::int64_t kMaxSpacing = 4096;
 
     // The segment becomes the longest straight suffix of at most kRebuild
     // letters (a word is straight iff its reverse is: it is read backward);
@@ -427,6 +528,13 @@ private:
     std::array<LineRate, 2> rates_{};  // the last two lines that broke, latest first
     std::int64_t line_start_ = 0;      // the event of the line's first letter
     std::int64_t retry_ = 0;           // the line's length from which a guess that fails restarts
+    // The planner model (tick_clock()).
+    bool clock_ = false;
+    RateGuess next_;                      // the line the next segment would start
+    std::vector<std::uint32_t> spacings_; // per distance between line starts (1..kMaxSpacing-1), how often
+    std::vector<std::uint16_t> counted_;  // the distances whose count is not 0
+    std::int64_t seg_ = 0;                // the clock's period (0: none yet)
+    std::int64_t best_ = 0;               // the distances counted around it
 };
 
 constexpr int kMinor = kMaxAxes - 1;  // axes besides time
@@ -641,12 +749,14 @@ public:
     /// kTickGuess (mixed codings: their lines guess the next letter).
     /// kTickMatch (mixed codings: a match model over the block's `ticks`,
     /// after the ticks of `window` with kTickWindow), kTickRefine (the plain
-    /// coding: the same match, refining the step decisions' contexts).
+    /// coding: the same match, refining the step decisions' contexts),
+    /// kTickPlanner (the planner model).
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks,
               const WindowView* window)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
           restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
-          guided_((flags & kTickGuided) != 0), refine_((flags & kTickRefine) != 0) {
+          guided_((flags & kTickGuided) != 0), refine_((flags & kTickRefine) != 0),
+          planner_((flags & kTickPlanner) != 0) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
         if (flags & (kTickMatch | kTickRefine))
             match_ = std::make_unique<TickMatch>(ticks, (flags & kTickWindow) ? window : nullptr);
@@ -654,7 +764,7 @@ public:
 
     /// A chain's start: every follower forgets.
     void start_chain() {
-        for (auto& f : axis_) f.reset(restart_, guessing_);
+        for (auto& f : axis_) f.reset(restart_, guessing_, planner_);
         for (auto& f : bres_) f.reset(restart_, bres_guessing());
         moved_.fill(0);
         sign_.fill(1);
@@ -717,9 +827,20 @@ public:
                     mix_context(io_, 0, ctx_join(ctx_join(ax, 1), f.recent() & 0xFFFFu));
                 }
                 mix_context(io_, 1, ctx_join(ctx_join(ax, 2), f.run_key()));
-                mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
                 const auto uf = static_cast<std::uint64_t>(fa);
-                const auto guess = guessing_ ? static_cast<std::uint64_t>(f.guess()) : 0u;  // (models 3 and 6)
+                const auto guess = guessing_ ? static_cast<std::uint64_t>(f.guess()) : 0u;  // (models 2, 3 and 6)
+                const bool crossing = guessing_ && windows_ && i > 0;
+                // The planner model: model 2 takes the leader's segment
+                // clock and an interrupt block's follower's interrupt grid
+                // in place of the last ticks' masks.
+                if (planner_ && i == 0)
+                    mix_context(io_, 2, ctx_join(ctx_join(ax, 13), (static_cast<std::uint64_t>(f.next_guess()) << 12) |
+                                                                   (guess << 8) |
+                                                                   (static_cast<std::uint64_t>(f.clock_phase()) << 4) | uf));
+                else if (planner_ && crossing)
+                    mix_context(io_, 2, ctx_join(ctx_join(ax, 12), grid_context(ua, fa)));
+                else
+                    mix_context(io_, 2, ctx_join(ctx_join(ax, 3), ((history_ & 0xFFFFFu) << 5) | m));
                 // The guess flag: the axis's guessed next letter with the time
                 // since its last step, in place of its last interval.
                 mix_context(io_, 3, guessing_ ? ctx_join(ctx_join(ax, 9), (guess << 22) | (capped(since_[ua]) << 12) | uf)
@@ -728,7 +849,6 @@ public:
                 // and b (which the primary context holds). The guess flag, on an
                 // interrupt block's axis that follows the leader: where in the
                 // leader's interval its Bresenham line steps (crossing()).
-                const bool crossing = guessing_ && windows_ && i > 0;
                 const std::uint64_t cross = crossing ? crossing_context(ua, fa) : 0;
                 if (crossing)
                     mix_context(io_, 4, ctx_join(ctx_join(ax, 10), cross));
@@ -742,6 +862,19 @@ public:
                 mix_context(io_, 7, ctx_join(ctx_join(ax, 8), pattern(since_[ua] + 1, g)));
                 // The match flag: the match's state with t.
                 if (match_) mix_context(io_, 8, ctx_join(ctx_join(ax, 11), (ms << 2) | uf));
+                if (planner_) {
+                    // The planned probability as the mixers' direct input
+                    // and, with coding 2, with the match's bit, a, b and i,
+                    // the sure decisions' row.
+                    const std::int64_t pp = f.planned_p1();
+                    if (pp >= 0)
+                        io_.m->direct(stretch(static_cast<std::uint32_t>(std::clamp<std::int64_t>(pp, 128, 65536 - 128))));
+                    if (sure_) {
+                        const int pg = pp < 0 ? 0 : pp == 0 ? 1 : pp == 65536 ? 2 : 3 + static_cast<int>(pp * 4 / 65536);
+                        const int mb = ms == 0 ? 0 : 1 + static_cast<int>((ms - 1) & 1u);
+                        io_.m->sure_row(((((pg * 4 + fa) * 4 + ba) * 2 + (i > 0)) * 3) + mb);
+                    }
+                }
                 if (guided_) {
                     // The guessed letter with b picks mixer 1's weight set; the
                     // step against the trend with t mixer 2's and the letter,
@@ -777,6 +910,12 @@ public:
             if constexpr (kMixedIo<Io>) {
                 if (sure_ && match_ && match_->length() >= TickMatch::kUnsureLength) {
                     unsure = ms != 0 && static_cast<int>((ms - 1) & 1u) != (pr.p < 32768 ? 1 : 0);
+                    if (unsure) io_.sure = 0;
+                }
+                // The planner model: one that the planned letter contradicts too.
+                if (sure_ && planner_ && !unsure) {
+                    const std::int64_t pp = f.planned_p1();
+                    unsure = pp >= 0 && (pp >= 32768) != (pr.p < 32768);
                     if (unsure) io_.sure = 0;
                 }
             }
@@ -860,6 +999,34 @@ private:
         return static_cast<std::uint64_t>((d * 2 + moved_[ua]) * 4 + fa);
     }
 
+    // The planner model, axis `ua` of an interrupt block that follows the
+    // leader: the tick of a step now against the ticks where its Bresenham
+    // line would step if the leader's last interval g held 2^L interrupts,
+    // for L = 3, 2, 1 (a controller steps at its interrupts: Grbl's AMASS
+    // runs 2, 4 or 8 of them a leader step), the step at the first
+    // interrupt at or after the line's crossing() and on the first tick at
+    // or after that interrupt, each clamped to +-3 ticks; with g, the
+    // ticks since the leader's last step, whether the axis has stepped in
+    // the interval and its admitted set.
+    std::uint64_t grid_context(std::size_t ua, int fa) const {
+        const std::int64_t cr = bres_[ua].crossing();
+        const auto ul = static_cast<std::size_t>(leader_);
+        const std::int64_t g = gap_[ul], now = since_[ul] + 1;
+        std::uint64_t q = std::uint64_t{1} << 15;  // no crossing in this interval, or no interval
+        if (cr >= 0 && g > 0) {
+            q = 0;
+            for (int L = 3; L >= 1; --L) {
+                const std::int64_t k = ((cr << L) + RateGuess::kOne - 1) / RateGuess::kOne;
+                const std::int64_t at = ((k * g) + (std::int64_t{1} << L) - 1) >> L;
+                q = q * 8 + static_cast<std::uint64_t>(clamp_int(now - at, -3, 3) + 3);
+            }
+            q = q * 64 + static_cast<std::uint64_t>(std::min<std::int64_t>(g, 63));
+        }
+        return (q << 16) | (static_cast<std::uint64_t>(std::min<std::int64_t>(now, 63)) << 10) |
+               (static_cast<std::uint64_t>(std::min<std::int64_t>(g, 63)) << 4) | (static_cast<std::uint64_t>(moved_[ua]) << 2) |
+               static_cast<std::uint64_t>(fa);
+    }
+
     static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
     // Mixed coding, the intervals of an axis `g` (latest first, 0: none):
     // a step now (after `next` ticks) against the next interval
@@ -883,11 +1050,18 @@ private:
             v = v * 8 + static_cast<std::uint64_t>(g[j + 1] == 0 ? 7 : clamp_int(g[j] - g[j + 1], -3, 3) + 3);
         return v;
     }
-    // Ticks per step of axis a: its last interval, or the time it has
-    // rested when longer; unknown before its second step.
+    // Ticks per step of axis a, in eighths: its last interval, or the time
+    // it has rested when longer; with the planner model, once it has four
+    // intervals, their mean, or that of the last three and the time it has
+    // rested when longer (a leader that changes less often, nearer the
+    // controller's Bresenham major axis of a move); unknown before its
+    // second step.
     std::int64_t key(int a) const {
         const auto ua = static_cast<std::size_t>(a);
-        return gap_[ua] == 0 ? INT64_MAX : std::max(gap_[ua], since_[ua]);
+        if (gap_[ua] == 0) return INT64_MAX;
+        const auto& g = gaps_[ua];
+        if (planner_ && g[3] != 0) return 2 * (g[0] + g[1] + g[2] + std::max(g[3], since_[ua]));
+        return 8 * std::max(gap_[ua], since_[ua]);
     }
 
     Io& io_;
@@ -899,6 +1073,7 @@ private:
     bool guessing_;  // the coding flag kTickGuess
     bool guided_;    // the coding flag kTickGuided
     bool refine_;    // the coding flag kTickRefine
+    bool planner_;   // the planner model (kTickPlanner)
     std::unique_ptr<TickMatch> match_;  // the coding flag kTickMatch (mixed codings) or kTickRefine (plain)
     // kTickRefine: per axis, the contexts by the match's state (1..36) and q (0..15).
     std::array<std::array<Prob, 36 * 16>, kMinor> refined_{};
@@ -958,16 +1133,19 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
         nsteps += chain.steps.size();
     }
     std::string out;
-    put_u8(out, subtype);
     flags &= tick_flags(coding);
     if (!(flags & (kTickMatch | kTickRefine)) || !window || !has_ticks(*window)) flags &= ~kTickWindow;
-    put_u8(out, static_cast<unsigned>(coding) | flags);
+    const bool planner = (flags & kTickPlanner) != 0;
+    put_u8(out, !planner ? subtype : subtype == kInterruptSubtype ? kInterruptPlannerSubtype : kTickPlannerSubtype);
+    put_u8(out, static_cast<unsigned>(coding) | (flags & ~kTickPlanner));
+    if (planner) put_u8(out, kPlannerModel);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
     const TickTablesLease tables(axes - 1);
     if (coding != TickCoding::plain) {
-        MixPredictor pred((*tables).base(), (flags & kTickMatch) ? kMixMatchModels : kMixMaxModels, mix_guide(flags));
+        MixPredictor pred((*tables).base(), (flags & kTickMatch) ? kMixMatchModels : kMixMaxModels,
+                          mix_guide(static_cast<unsigned>(coding) | flags, nsteps));
         MixEncIo io;
         io.m = &pred;
         write_ticks(io, *tables, block, subtype == kInterruptSubtype, coding, flags, window);
@@ -1001,9 +1179,9 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
                         const std::string& where, const WindowView* window) {
     Cursor cur(payload);
     unsigned subtype, coding;
-    if (!cur.u8(subtype) || (subtype != kTickSubtype && subtype != kInterruptSubtype))
+    if (!cur.u8(subtype) || !is_tick_subtype(subtype))
         return make_error(Errc::corrupt, where + " byte 0: unknown subtype of an extended block");
-    const bool windows = subtype == kInterruptSubtype;
+    const bool windows = is_interrupt_subtype(subtype);
     const auto is = [&](TickCoding c) { return (coding & ~tick_flags(c)) == static_cast<unsigned>(c); };
     if (!cur.u8(coding) || (kMixedIo<Io> ? !is(TickCoding::mixed) && !is(TickCoding::mixed_sure) : !is(TickCoding::plain)) ||
         ((coding & kTickWindow) && !(coding & (kTickMatch | kTickRefine))))
@@ -1011,11 +1189,20 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
                                              (windows ? "an interrupt block" : "a tick block"));
     if ((coding & kTickWindow) && !window)
         return make_error(Errc::corrupt, where + " byte 1: the match reads the window of a block not flagged window");
+    if (subtype == kTickPlannerSubtype || subtype == kInterruptPlannerSubtype) {
+        unsigned model;
+        if (!cur.u8(model) || model != kPlannerModel)
+            return make_error(Errc::corrupt, where + " byte 2: unknown model of " +
+                                                 (windows ? "an interrupt block" : "a tick block"));
+        coding |= kTickPlanner;
+    }
+    const std::size_t header = cur.pos();
     std::uint64_t nchains, nsteps;
     if (!cur.varint(nchains) || !cur.varint(nsteps))
         return make_error(Errc::corrupt, where + " byte " + std::to_string(cur.pos()) + ": bad payload header");
     if (nchains > kMaxBlockChains || nsteps > kMaxBlockSteps)
-        return make_error(Errc::limit, where + " byte 2: payload declares more chains or steps than the limits");
+        return make_error(Errc::limit, where + " byte " + std::to_string(header) +
+                                           ": payload declares more chains or steps than the limits");
     auto layout = get_layout(cur, where);
     if (!layout) return std::move(layout).error();
     const std::size_t base = cur.pos();
@@ -1023,7 +1210,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     std::unique_ptr<MixPredictor> pred;
     if constexpr (kMixedIo<Io>)
         pred = std::make_unique<MixPredictor>((*tables).base(), (coding & kTickMatch) ? kMixMatchModels : kMixMaxModels,
-                                              mix_guide(coding));
+                                              mix_guide(coding, nsteps));
     Io io = [&] {
         if constexpr (kMixedIo<Io>) return Io(payload.substr(base), pred.get());
         else return Io(payload.substr(base));

@@ -21,6 +21,17 @@ inline constexpr unsigned kTickSubtype = 2;
 /// the leader's previous step (a controller's Bresenham line over its
 /// stepper interrupts, whatever its step smoothing level).
 inline constexpr unsigned kInterruptSubtype = 1;
+/// Subtypes 5 and 6 of block type 7: the tick block and the interrupt block
+/// with a model byte after the coding byte, whose value 1 names the planner
+/// model (docs/FORMAT.md 1.16; kTickPlanner).
+inline constexpr unsigned kTickPlannerSubtype = 5;
+inline constexpr unsigned kInterruptPlannerSubtype = 6;
+/// Whether block type 7 subtype `s` is a tick or interrupt block, and an
+/// interrupt block.
+constexpr bool is_tick_subtype(unsigned s) {
+    return s == kTickSubtype || s == kInterruptSubtype || s == kTickPlannerSubtype || s == kInterruptPlannerSubtype;
+}
+constexpr bool is_interrupt_subtype(unsigned s) { return s == kInterruptSubtype || s == kInterruptPlannerSubtype; }
 /// The encoder's name for a block written as a tick block (its record is of
 /// block type 7): not a block type of the format.
 inline constexpr unsigned kTickBlock = 8;
@@ -59,23 +70,31 @@ inline constexpr unsigned kTickMatch = 32;
 /// state and of the context's probability, and both adapt
 /// (docs/FORMAT.md 1.13, "Match"). The blocks without it decode as before.
 inline constexpr unsigned kTickRefine = 128;
+/// Not a bit of the coding byte: the block is written as subtype 5 or 6
+/// with model byte 1, the planner model (docs/FORMAT.md 1.16): the leader
+/// is the axis of the shortest mean of its last four intervals; with a
+/// mixed coding, each axis's line keeps a segment clock and the line the
+/// next stepper segment would start, which give contexts, a direct input
+/// to the mixers and, with coding 2, a map for the sure decisions. The
+/// encoder sets it on every block.
+inline constexpr unsigned kTickPlanner = 256;
 /// The coding byte's flags the encoder sets on every block (those that go
-/// with its coding: tick_flags()).
-inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickRefine;
+/// with its coding: tick_flags()), and kTickPlanner.
+inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickRefine | kTickPlanner;
 /// Flag of the coding byte, with the match or refine flag only: the match
 /// starts from the ticks of the window's blocks, as if they had been coded
 /// before the block's first tick; the block is flagged `window`
 /// (docs/FORMAT.md 1.13, "Match", and 1.8 "Ticks"). The encoder sets it
 /// where the window holds ticks.
 inline constexpr unsigned kTickWindow = 64;
-/// Every flag of the coding byte: its bits above the coding.
+/// Every flag: the coding byte's bits above the coding, and kTickPlanner.
 inline constexpr unsigned kTickAllFlags = kTickFlags | kTickWindow;
 /// The flags that may go with `coding`: the guess, guided and match flags
 /// with a mixed one, the refine flag with the plain one, the window flag
-/// with either (and the match or refine flag only).
+/// (with the match or refine flag only) and the planner with either.
 inline constexpr unsigned tick_flags(TickCoding coding) {
-    return coding == TickCoding::plain ? kTickRestart | kTickRefine | kTickWindow
-                                       : kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickWindow;
+    return coding == TickCoding::plain ? kTickRestart | kTickRefine | kTickWindow | kTickPlanner
+                                       : kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickWindow | kTickPlanner;
 }
 /// Whether the window holds ticks (tick_masks()) for the window flag.
 bool has_ticks(const WindowView& window);

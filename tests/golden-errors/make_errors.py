@@ -458,6 +458,17 @@ files.update({
     # Coding 0 with the window bit but neither the match nor the refine bit (68).
     'v2_tick_window_plain': ('corrupt', 'byte 8 (block 0) payload byte 1', reseal2(edit(tref, f_payload + 1, 68))),
 })
+# Block type 7 subtypes 5 and 6, the tick and interrupt blocks with a model
+# byte (docs/FORMAT.md 1.16), from tests/golden/v2/tick_planner.steps.stz:
+# its first block is an interrupt block (subtype 6) of coding byte 62 and
+# model byte 1, the planner model.
+tplan, p_payload = first_extended_block('tick_planner.steps.stz', 6, 62)
+assert tplan[p_payload + 2] == 1, 'v2/tick_planner.steps.stz: model byte'
+files.update({
+    # A model byte other than 1 (at the model byte).
+    'v2_tick_planner_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 2',
+                                      reseal2(edit(tplan, p_payload + 2, 2))),
+})
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
 rcm, r_payload = first_extended_block('raw_cm.hpgl.stz', 3, 0)
