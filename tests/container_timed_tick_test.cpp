@@ -1,4 +1,5 @@
-// The tick block (docs/FORMAT.md 1.13, block type 7 subtype 2): round trips
+// The tick block (docs/FORMAT.md 1.13, block type 7 subtype 2; 5 with the
+// planner model, 1.16) and the interrupt block (1.14, subtypes 1 and 6): round trips
 // of blocks on every axis count (chains, empty chains, reversals, layouts,
 // idle stretches), of whole frames cut into many blocks at every tier, what
 // a constant rate costs, and its corrupt cases named by payload byte.

@@ -1384,8 +1384,9 @@ void choose_block(BlockJob& job, const EncoderSettings& s) {
             }
         }
     }
-    // Timed frames at every level: the tick block (type 7 subtype 2) or
-    // the interrupt block (subtype 1), the one the check chose (the smaller
+    // Timed frames at every level: the tick block (type 7 subtype 5: 2 with
+    // the planner model's byte) or the interrupt block (subtype 6: 1 with
+    // it), the one the check chose (the smaller
     // plain one; for the mixed codings, kMixedIrqMargin), kept when smaller
     // than the segment-based blocks; from kMixedTickLevel
     // with mixed predictions but for the sure decisions (coding 2), 13-23 %
