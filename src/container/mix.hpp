@@ -379,7 +379,7 @@ public:
     [[gnu::always_inline]] std::uint32_t sure_p(const Prob& pr) noexcept {
         const std::int32_t p1 = static_cast<std::int32_t>(65536u - pr.p);
         const std::int32_t r = mixdetail::apm_refine(
-            &apm_[static_cast<std::size_t>(kApmRows + rows2_ + sure_row_) * 33], stretch(65536u - pr.p), sure_at_);
+            &apm_[static_cast<std::size_t>(kApmRows + rows2_ + sure_row_) * 33], stretch(static_cast<std::uint32_t>(p1)), sure_at_);
         return static_cast<std::uint32_t>(std::clamp((p1 + r) >> 1, 1, 65535));
     }
     /// Trains the row sure_p() read, and the context, on the coded bit.

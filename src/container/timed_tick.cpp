@@ -189,7 +189,7 @@ public:
     /// a 1 in 1/65536 (0 and 65536 when sure); -1 when there is no line.
     std::int64_t p1() const {
         if (!valid_) return -1;
-        const std::int64_t theta = (s_ + 1) * kOne - r_ * (k_ + 1);
+        const std::int64_t theta = threshold();
         if (theta <= lo_) return 65536;
         if (theta > hi_) return 0;
         return (hi_ - theta + 1) * 65536 / (hi_ - lo_ + 1);
@@ -197,13 +197,16 @@ public:
     /// The share of the phases left that give a 1 next, in buckets.
     int guess() const {
         if (!valid_) return 0;
-        const std::int64_t theta = (s_ + 1) * kOne - r_ * (k_ + 1);
+        const std::int64_t theta = threshold();
         if (theta <= lo_) return 1;
         if (theta > hi_) return 2;
         return 3 + static_cast<int>((hi_ - theta + 1) * kShares / (hi_ - lo_ + 2));
     }
 
 private:
+    // The phase from which the next letter is a 1 (those at or above it).
+    std::int64_t threshold() const { return (s_ + 1) * kOne - r_ * (k_ + 1); }
+
     std::int64_t r_ = 0, lo_ = 0, hi_ = 0, k_ = 0, s_ = 0;
     bool valid_ = false;
 };
@@ -813,6 +816,9 @@ public:
             const std::size_t ctx = static_cast<std::size_t>((f.context(fa) * 2 + (m != 0)) * 4 + ba);
             // The match or refine flag: the match's state for this axis.
             const std::uint64_t ms = match_ ? match_->state(a) : 0;
+            // The planner model: the axis's planned probability of a step
+            // (the mixed codings' direct input, sure map and sure rule).
+            [[maybe_unused]] const std::int64_t pp = kMixedIo<Io> && planner_ ? f.planned_p1() : -1;
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
                 io_.field(i == 0 ? 0 : 1);
@@ -866,7 +872,6 @@ public:
                     // The planned probability as the mixers' direct input
                     // and, with coding 2, with the match's bit, a, b and i,
                     // the sure decisions' row.
-                    const std::int64_t pp = f.planned_p1();
                     if (pp >= 0)
                         io_.m->direct(stretch(static_cast<std::uint32_t>(std::clamp<std::int64_t>(pp, 128, 65536 - 128))));
                     if (sure_) {
@@ -914,7 +919,6 @@ public:
                 }
                 // The planner model: one that the planned letter contradicts too.
                 if (sure_ && planner_ && !unsure) {
-                    const std::int64_t pp = f.planned_p1();
                     unsure = pp >= 0 && (pp >= 32768) != (pr.p < 32768);
                     if (unsure) io_.sure = 0;
                 }
@@ -1189,7 +1193,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
                                              (windows ? "an interrupt block" : "a tick block"));
     if ((coding & kTickWindow) && !window)
         return make_error(Errc::corrupt, where + " byte 1: the match reads the window of a block not flagged window");
-    if (subtype == kTickPlannerSubtype || subtype == kInterruptPlannerSubtype) {
+    if (has_model_byte(subtype)) {
         unsigned model;
         if (!cur.u8(model) || model != kPlannerModel)
             return make_error(Errc::corrupt, where + " byte 2: unknown model of " +

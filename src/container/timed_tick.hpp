@@ -32,6 +32,8 @@ constexpr bool is_tick_subtype(unsigned s) {
     return s == kTickSubtype || s == kInterruptSubtype || s == kTickPlannerSubtype || s == kInterruptPlannerSubtype;
 }
 constexpr bool is_interrupt_subtype(unsigned s) { return s == kInterruptSubtype || s == kInterruptPlannerSubtype; }
+/// Whether block type 7 subtype `s` is a tick or interrupt block with a model byte.
+constexpr bool has_model_byte(unsigned s) { return s == kTickPlannerSubtype || s == kInterruptPlannerSubtype; }
 /// The encoder's name for a block written as a tick block (its record is of
 /// block type 7): not a block type of the format.
 inline constexpr unsigned kTickBlock = 8;
