@@ -1689,7 +1689,7 @@ void window_items_pass(BlockJob& job, const EncoderSettings& s, const WindowView
         const unsigned sub = static_cast<unsigned char>(rec.payload[0]);
         const unsigned coding = static_cast<unsigned char>(rec.payload[1]);
         const auto c = static_cast<TickCoding>(coding & ~kTickAllFlags);
-        const unsigned flags = coding | (has_model_byte(sub) ? kTickPlanner : 0u);
+        const unsigned flags = coding | tick_model_flags(rec.payload);
         const std::string tick = is_interrupt_subtype(sub) ? write_interrupt_block(job.block, c, flags, &window)
                                                            : write_tick_block(job.block, c, flags, &window);
         if (tick.empty() || tick.size() > kMaxBlockPayload) {

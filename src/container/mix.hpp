@@ -339,7 +339,7 @@ public:
             std::int32_t* w = &weights_[static_cast<std::size_t>(s) * kInputs];
             w[0] = kPrimaryWeight;
             for (int k = 1; k <= n_; ++k) w[k] = kModelWeight;
-            w[kDirect] = kModelWeight;
+            for (int k = 0; k < kDirectInputs; ++k) w[kDirect + k] = kModelWeight;
         }
         // Every row of the maps starts the same.
         for (std::size_t r = 0; r < static_cast<std::size_t>(kApmRows + rows2_ + sure_rows_); ++r)
@@ -361,13 +361,13 @@ public:
     void select(int field) noexcept {
         field_ = field & 15;
         set1_ = set2_ = row2_ = sure_row_ = -1;
-        x_[kDirect] = 0;
+        for (int k = 0; k < kDirectInputs; ++k) x_[static_cast<std::size_t>(kDirect + k)] = 0;
     }
-    /// Until the next select(): the mixers' direct input, a stretched
-    /// probability of a 1 (-2047..2047) that the coder computed itself (the
-    /// tick block's planner model); 0 otherwise, which leaves the mix as
-    /// without it.
-    void direct(std::int32_t stretched) noexcept { x_[kDirect] = stretched; }
+    /// Until the next select(): the mixers' direct input k (0 or 1), a
+    /// stretched probability of a 1 (-2047..2047) that the coder computed
+    /// itself (the tick block's planner model and its slot lines); 0
+    /// otherwise, which leaves the mix as without it.
+    void direct(int k, std::int32_t stretched) noexcept { x_[static_cast<std::size_t>(kDirect + k)] = stretched; }
     /// Until the next select(): a sure decision (mix_sure()) is coded with
     /// its context's probability and row `row` (0..MixGuide::sure_rows-1)
     /// of the sure decisions' map averaged, and the map learns (sure_p(),
@@ -471,7 +471,7 @@ private:
     [[gnu::always_inline]] std::int32_t dot(const std::int32_t* w) const noexcept {
         std::int64_t d = 0;
         for (int k = 0; k <= N + 1; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
-        d += static_cast<std::int64_t>(w[kDirect]) * x_[kDirect];
+        for (int k = kDirect; k < kInputs; ++k) d += static_cast<std::int64_t>(w[k]) * x_[static_cast<std::size_t>(k)];
         d >>= 16;
         return static_cast<std::int32_t>(d > 2047 ? 2047 : d < -2047 ? -2047 : d);
     }
@@ -487,13 +487,14 @@ private:
             w[k] = static_cast<std::int32_t>(v);
         };
         for (int k = 0; k <= N + 1; ++k) step(k);
-        step(kDirect);
+        for (int k = kDirect; k < kInputs; ++k) step(k);
     }
 
-    // Inputs: the primary, the models, the bias, and the direct input last
-    // (its weight at kDirect whatever the models).
+    // Inputs: the primary, the models, the bias, and the direct inputs last
+    // (their weights from kDirect on whatever the models).
+    static constexpr int kDirectInputs = 2;
     static constexpr int kDirect = kMixMatchModels + 2;
-    static constexpr int kInputs = kMixMatchModels + 3;
+    static constexpr int kInputs = kDirect + kDirectInputs;
     // The sure decisions' map learns at 1/2^kSureRate (chosen on the timed
     // streams of docs/benchmarks.md "Timed streams: the planner model").
     static constexpr int kSureRate = 8;

@@ -31,8 +31,11 @@ namespace dss = stepzip::detail::dss;
 /// Chosen on corpora/timed/trapezoid-2axis, trapezoid-3axis and the Grbl
 /// stream (docs/benchmarks.md "Timed streams at -L 19: sure decisions").
 constexpr std::uint32_t kSure = 32;
-/// The model byte of subtypes 5 and 6: the planner model (kTickPlanner).
+/// The model byte of subtypes 5 and 6: the planner model (kTickPlanner),
+/// and on an interrupt block with a mixed coding the planner model with
+/// slot lines (kTickSlots).
 constexpr unsigned kPlannerModel = 1;
+constexpr unsigned kSlotModel = 2;
 /// A segment followed is cut back to its longest suffix of at most
 /// kRebuild letters that is straight when it breaks, and when it reaches
 /// kMaxLine letters (the hull arithmetic stays far inside 64 bits).
@@ -185,6 +188,10 @@ public:
         if (left > r_) return -1;
         return std::max<std::int64_t>(left, 0) * kOne / r_;
     }
+    /// The line's counter after the letters read, r k + mu - s with mu the
+    /// middle of the phases left: how far the line is past its last 1, in
+    /// 1/kOne of a 1 (within [0, kOne) while the line holds).
+    std::int64_t counter() const { return r_ * k_ + (lo_ + hi_) / 2 - s_ * kOne; }
     /// The share of the phases left that give a 1 next, as a probability of
     /// a 1 in 1/65536 (0 and 65536 when sure); -1 when there is no line.
     std::int64_t p1() const {
@@ -280,6 +287,9 @@ public:
     /// Where in the next event the line's counter crosses to its next 1
     /// (RateGuess::crossing()).
     std::int64_t crossing() const { return guess_.crossing(); }
+    /// The line's guessed rate (RateGuess) and the segment's length.
+    const RateGuess& guessed() const { return guess_; }
+    std::int64_t length() const { return line_.length(); }
 
     /// The last 64 letters, the latest in bit 0 (mixed coding).
     std::uint64_t recent() const { return recent_; }
@@ -753,13 +763,14 @@ public:
     /// kTickMatch (mixed codings: a match model over the block's `ticks`,
     /// after the ticks of `window` with kTickWindow), kTickRefine (the plain
     /// coding: the same match, refining the step decisions' contexts),
-    /// kTickPlanner (the planner model).
+    /// kTickPlanner (the planner model), kTickSlots (mixed codings of an
+    /// interrupt block: the planner model with slot lines).
     TickCoder(Io& io, TickTables& t, int axes, bool windows, TickCoding coding, unsigned flags, std::uint64_t ticks,
               const WindowView* window)
         : io_(io), t_(t), minor_(axes - 1), windows_(windows), sure_(coding == TickCoding::mixed_sure),
           restart_((flags & kTickRestart) != 0), guessing_((flags & kTickGuess) != 0),
           guided_((flags & kTickGuided) != 0), refine_((flags & kTickRefine) != 0),
-          planner_((flags & kTickPlanner) != 0) {
+          planner_((flags & kTickPlanner) != 0), slots_((flags & kTickSlots) != 0) {
         if constexpr (kMixedIo<Io>) io_.sure = sure_ ? kSure : 0;
         if (flags & (kTickMatch | kTickRefine))
             match_ = std::make_unique<TickMatch>(ticks, (flags & kTickWindow) ? window : nullptr);
@@ -776,6 +787,7 @@ public:
         for (auto& g : gaps_) g.fill(0);
         leader_ = -1;
         history_ = 0;
+        if (slots_) reset_slots();
     }
 
     /// One tick: `mask` bit a set when axis a + 1 steps, `neg` bit a when
@@ -800,6 +812,7 @@ public:
             leader_ = order[0];
             for (auto& f : bres_) f.reset(restart_, bres_guessing());
             moved_.fill(0);
+            if (slots_) reset_slots();
         }
         unsigned m = 0, n = 0;
         int lead_step = 0;
@@ -818,7 +831,11 @@ public:
             const std::uint64_t ms = match_ ? match_->state(a) : 0;
             // The planner model: the axis's planned probability of a step
             // (the mixed codings' direct input, sure map and sure rule).
-            [[maybe_unused]] const std::int64_t pp = kMixedIo<Io> && planner_ ? f.planned_p1() : -1;
+            // With slot lines, a follower's is its slot line's (slot_p1())
+            // where it has one: the mixers see both.
+            [[maybe_unused]] const std::int64_t own = kMixedIo<Io> && planner_ ? f.planned_p1() : -1;
+            [[maybe_unused]] const std::int64_t slot = kMixedIo<Io> && slots_ && i > 0 ? slot_p1(ua) : -1;
+            [[maybe_unused]] const std::int64_t pp = slot >= 0 ? slot : own;
             if constexpr (kMixedIo<Io>) {
                 const std::uint64_t ax = static_cast<std::uint64_t>(a);
                 io_.field(i == 0 ? 0 : 1);
@@ -838,11 +855,13 @@ public:
                 const bool crossing = guessing_ && windows_ && i > 0;
                 // The planner model: model 2 takes the leader's segment
                 // clock and an interrupt block's follower's interrupt grid
-                // in place of the last ticks' masks.
+                // (with slot lines, its slots) in place of the last ticks' masks.
                 if (planner_ && i == 0)
                     mix_context(io_, 2, ctx_join(ctx_join(ax, 13), (static_cast<std::uint64_t>(f.next_guess()) << 12) |
                                                                    (guess << 8) |
                                                                    (static_cast<std::uint64_t>(f.clock_phase()) << 4) | uf));
+                else if (slots_ && i > 0)
+                    mix_context(io_, 2, ctx_join(ctx_join(ax, 14), slot_context(ua, fa, lead_step)));
                 else if (planner_ && crossing)
                     mix_context(io_, 2, ctx_join(ctx_join(ax, 12), grid_context(ua, fa)));
                 else
@@ -869,11 +888,15 @@ public:
                 // The match flag: the match's state with t.
                 if (match_) mix_context(io_, 8, ctx_join(ctx_join(ax, 11), (ms << 2) | uf));
                 if (planner_) {
-                    // The planned probability as the mixers' direct input
-                    // and, with coding 2, with the match's bit, a, b and i,
-                    // the sure decisions' row.
-                    if (pp >= 0)
-                        io_.m->direct(stretch(static_cast<std::uint32_t>(std::clamp<std::int64_t>(pp, 128, 65536 - 128))));
+                    // The planned probability (the axis's own line's and its
+                    // slot line's) as the mixers' direct inputs and, with
+                    // coding 2, with the match's bit, a, b and i, the sure
+                    // decisions' row.
+                    const auto st = [](std::int64_t p) {
+                        return stretch(static_cast<std::uint32_t>(std::clamp<std::int64_t>(p, 128, 65536 - 128)));
+                    };
+                    if (own >= 0) io_.m->direct(0, st(own));
+                    if (slot >= 0) io_.m->direct(1, st(slot));
                     if (sure_) {
                         const int pg = pp < 0 ? 0 : pp == 0 ? 1 : pp == 65536 ? 2 : 3 + static_cast<int>(pp * 4 / 65536);
                         const int mb = ms == 0 ? 0 : 1 + static_cast<int>((ms - 1) & 1u);
@@ -940,6 +963,10 @@ public:
                 bres_[ua].push(step, ba);
             }
             if (i == 0) lead_step = step;
+            if (slots_) {
+                if (i == 0) count_slots(step);
+                else push_slots(ua, step);
+            }
             if (step) {
                 const int sb = std::min(bit_length(static_cast<std::uint64_t>(since_[ua])), kSinceBuckets - 1);
                 if constexpr (kMixedIo<Io>) {
@@ -1031,6 +1058,95 @@ private:
                static_cast<std::uint64_t>(fa);
     }
 
+    // Slot lines (kTickSlots): an interrupt block's axis that follows the
+    // leader steps at one of the controller's interrupts, which run 2^L
+    // times per leader step at step smoothing level L (Grbl's AMASS, L
+    // from 1 to 3), and on that grid of slots its Bresenham line is
+    // exact. The slots are placed by the leader's line: at a tick, those
+    // of level L between its counter (RateGuess::counter()) before and
+    // after the tick, or, while it has no line, the share of its last
+    // interval elapsed. Each axis reads one slot line a level, a letter a
+    // slot: whether it stepped there.
+
+    // Every slot line empty, no slot counted.
+    void reset_slots() {
+        for (auto& lines : slot_lines_)
+            for (Follower& f : lines) f.reset(true, true);
+        for (auto& a : ahead_) a.fill(0);
+        slot_at_.fill(0);
+    }
+    // After the leader's decision at a tick (`lead_step`: it stepped), the
+    // slots of each level the tick crosses.
+    void count_slots(int lead_step) {
+        const auto ul = static_cast<std::size_t>(leader_);
+        const RateGuess& lg = axis_[ul].guessed();
+        std::int64_t c = 0;
+        if (lg.valid())
+            c = lg.counter();
+        else if (gap_[ul] > 0)
+            c = lead_step ? 0 : (since_[ul] + 1) * RateGuess::kOne / gap_[ul];
+        c = std::clamp<std::int64_t>(c, 0, RateGuess::kOne - 1);
+        for (std::size_t j = 0; j < kSlotLevels; ++j) {
+            const int level = static_cast<int>(kSlotLevels - j);
+            const int at = static_cast<int>((c << level) / RateGuess::kOne);
+            crossed_[j] = std::max(lead_step ? at + (1 << level) - slot_at_[j] : at - slot_at_[j], 0);
+            slot_at_[j] = at;
+        }
+    }
+    // The slots of level j this tick crosses that axis ua has not read yet.
+    int slots_left(std::size_t ua, std::size_t j) const { return std::max(crossed_[j] - ahead_[ua][j], 0); }
+    // Axis ua's decision `step` on its slot lines: the slots crossed are
+    // read as 0s but the last, read as the decision; a step where no slot
+    // is left is read on the next slot, which the ticks after then skip.
+    void push_slots(std::size_t ua, int step) {
+        for (std::size_t j = 0; j < kSlotLevels; ++j) {
+            Follower& f = slot_lines_[ua][j];
+            const int n = crossed_[j] - ahead_[ua][j];
+            if (n <= 0) {
+                ahead_[ua][j] = -n;
+                if (step) {
+                    f.push(1, f.admits());
+                    ++ahead_[ua][j];
+                }
+                continue;
+            }
+            ahead_[ua][j] = 0;
+            for (int k = 1; k < n; ++k) f.push(0, f.admits());
+            f.push(step, f.admits());
+        }
+    }
+    // Model 2 of axis ua: per level, none when the tick crosses no slot
+    // left, else its slot line's next letter (Follower::guess()); with
+    // whether the leader steps now, whether the axis has stepped since it
+    // did and the admitted set.
+    std::uint64_t slot_context(std::size_t ua, int fa, int lead_step) const {
+        std::uint64_t v = 0;
+        for (std::size_t j = 0; j < kSlotLevels; ++j)
+            v = v * 16 + static_cast<std::uint64_t>(slots_left(ua, j) == 0 ? 0 : 1 + slot_lines_[ua][j].guess());
+        return (v << 4) | (static_cast<std::uint64_t>(lead_step) << 3) | (static_cast<std::uint64_t>(moved_[ua]) << 2) |
+               static_cast<std::uint64_t>(fa);
+    }
+    // The planned probability of a step of axis ua by the longest of its
+    // slot lines whose guess holds, once kSlotLine letters long: 0 when the
+    // tick crosses no slot left of its level, else that line's probability
+    // of a 1 next; -1 without such a line.
+    std::int64_t slot_p1(std::size_t ua) const {
+        std::size_t best = 0;
+        std::int64_t length = -1;
+        for (std::size_t j = 0; j < kSlotLevels; ++j) {
+            const Follower& f = slot_lines_[ua][j];
+            const std::int64_t len = f.planned_p1() < 0 ? -1 : f.length();
+            if (len > length) {
+                length = len;
+                best = j;
+            }
+        }
+        if (length < kSlotLine) return -1;
+        return slots_left(ua, best) == 0 ? 0 : slot_lines_[ua][best].planned_p1();
+    }
+    static constexpr std::size_t kSlotLevels = 3;  // L = 3, 2, 1
+    static constexpr std::int64_t kSlotLine = 4;
+
     static std::uint64_t capped(std::int64_t v) { return static_cast<std::uint64_t>(std::min<std::int64_t>(v, 1023)); }
     // Mixed coding, the intervals of an axis `g` (latest first, 0: none):
     // a step now (after `next` ticks) against the next interval
@@ -1078,12 +1194,19 @@ private:
     bool guided_;    // the coding flag kTickGuided
     bool refine_;    // the coding flag kTickRefine
     bool planner_;   // the planner model (kTickPlanner)
+    bool slots_;     // its slot lines (kTickSlots)
     std::unique_ptr<TickMatch> match_;  // the coding flag kTickMatch (mixed codings) or kTickRefine (plain)
     // kTickRefine: per axis, the contexts by the match's state (1..36) and q (0..15).
     std::array<std::array<Prob, 36 * 16>, kMinor> refined_{};
     std::array<int, kMinor> moved_{};    // interrupt blocks: the axis stepped since the leader's last step
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
+    // Slot lines: per axis and level (L = 3, 2, 1), the line over its
+    // slots and the slots it has read ahead of the ticks; per level, the
+    // slot the leader's counter is in and the slots the tick crossed.
+    std::array<std::array<Follower, kSlotLevels>, kMinor> slot_lines_;
+    std::array<std::array<int, kSlotLevels>, kMinor> ahead_{};
+    std::array<int, kSlotLevels> slot_at_{}, crossed_{};
     int leader_ = -1;
     std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
     std::array<int, kMinor> sign_{};
@@ -1140,9 +1263,10 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
     flags &= tick_flags(coding);
     if (!(flags & (kTickMatch | kTickRefine)) || !window || !has_ticks(*window)) flags &= ~kTickWindow;
     const bool planner = (flags & kTickPlanner) != 0;
+    if (!planner || subtype != kInterruptSubtype) flags &= ~kTickSlots;
     put_u8(out, !planner ? subtype : subtype == kInterruptSubtype ? kInterruptPlannerSubtype : kTickPlannerSubtype);
-    put_u8(out, static_cast<unsigned>(coding) | (flags & ~kTickPlanner));
-    if (planner) put_u8(out, kPlannerModel);
+    put_u8(out, static_cast<unsigned>(coding) | (flags & ~(kTickPlanner | kTickSlots)));
+    if (planner) put_u8(out, (flags & kTickSlots) ? kSlotModel : kPlannerModel);
     put_varint(out, block.chains.size());
     put_varint(out, nsteps);
     put_layout(out, block.layout);
@@ -1163,6 +1287,11 @@ std::string write_ticks_payload(const Block& block, TickCoding coding, unsigned 
 }
 
 }  // namespace
+
+unsigned tick_model_flags(std::string_view payload) {
+    if (payload.size() < 3 || !has_model_byte(static_cast<unsigned char>(payload[0]))) return 0;
+    return kTickPlanner | (static_cast<unsigned char>(payload[2]) == kSlotModel ? kTickSlots : 0u);
+}
 
 bool has_ticks(const WindowView& window) {
     return std::any_of(window.begin(), window.end(), [](const auto& b) { return !b->ticks.empty(); });
@@ -1194,11 +1323,12 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
     if ((coding & kTickWindow) && !window)
         return make_error(Errc::corrupt, where + " byte 1: the match reads the window of a block not flagged window");
     if (has_model_byte(subtype)) {
+        // Slot lines: an interrupt block with a mixed coding only.
         unsigned model;
-        if (!cur.u8(model) || model != kPlannerModel)
+        if (!cur.u8(model) || (model != kPlannerModel && (model != kSlotModel || !windows || !kMixedIo<Io>)))
             return make_error(Errc::corrupt, where + " byte 2: unknown model of " +
                                                  (windows ? "an interrupt block" : "a tick block"));
-        coding |= kTickPlanner;
+        coding |= kTickPlanner | (model == kSlotModel ? kTickSlots : 0u);
     }
     const std::size_t header = cur.pos();
     std::uint64_t nchains, nsteps;

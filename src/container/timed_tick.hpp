@@ -23,7 +23,8 @@ inline constexpr unsigned kTickSubtype = 2;
 inline constexpr unsigned kInterruptSubtype = 1;
 /// Subtypes 5 and 6 of block type 7: the tick block and the interrupt block
 /// with a model byte after the coding byte, whose value 1 names the planner
-/// model (docs/FORMAT.md 1.16; kTickPlanner).
+/// model (docs/FORMAT.md 1.16; kTickPlanner), and 2 on an interrupt block
+/// with a mixed coding the planner model with slot lines (1.17; kTickSlots).
 inline constexpr unsigned kTickPlannerSubtype = 5;
 inline constexpr unsigned kInterruptPlannerSubtype = 6;
 /// Whether block type 7 subtype `s` is a tick or interrupt block, and an
@@ -80,24 +81,39 @@ inline constexpr unsigned kTickRefine = 128;
 /// to the mixers and, with coding 2, a map for the sure decisions. The
 /// encoder sets it on every block.
 inline constexpr unsigned kTickPlanner = 256;
+/// Not a bit of the coding byte: with kTickPlanner, an interrupt block
+/// with a mixed coding is written with model byte 2, the planner model
+/// with slot lines (docs/FORMAT.md 1.17): each axis that follows the
+/// leader is read on the grid of interrupts that 2, 4 and 8 slots per
+/// leader interval make, where its Bresenham line is exact, and the line
+/// of each grid gives a context and the mixers' direct input. The encoder
+/// sets it on every block; a tick block or the plain coding drops it.
+inline constexpr unsigned kTickSlots = 512;
 /// The coding byte's flags the encoder sets on every block (those that go
-/// with its coding: tick_flags()), and kTickPlanner.
-inline constexpr unsigned kTickFlags = kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickRefine | kTickPlanner;
+/// with its coding and subtype: tick_flags()), kTickPlanner and kTickSlots.
+inline constexpr unsigned kTickFlags =
+    kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickRefine | kTickPlanner | kTickSlots;
 /// Flag of the coding byte, with the match or refine flag only: the match
 /// starts from the ticks of the window's blocks, as if they had been coded
 /// before the block's first tick; the block is flagged `window`
 /// (docs/FORMAT.md 1.13, "Match", and 1.8 "Ticks"). The encoder sets it
 /// where the window holds ticks.
 inline constexpr unsigned kTickWindow = 64;
-/// Every flag: the coding byte's bits above the coding, and kTickPlanner.
+/// Every flag: the coding byte's bits above the coding, kTickPlanner and kTickSlots.
 inline constexpr unsigned kTickAllFlags = kTickFlags | kTickWindow;
 /// The flags that may go with `coding`: the guess, guided and match flags
-/// with a mixed one, the refine flag with the plain one, the window flag
-/// (with the match or refine flag only) and the planner with either.
+/// and the slot lines with a mixed one, the refine flag with the plain
+/// one, the window flag (with the match or refine flag only) and the
+/// planner with either.
 inline constexpr unsigned tick_flags(TickCoding coding) {
-    return coding == TickCoding::plain ? kTickRestart | kTickRefine | kTickWindow | kTickPlanner
-                                       : kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickWindow | kTickPlanner;
+    return coding == TickCoding::plain
+               ? kTickRestart | kTickRefine | kTickWindow | kTickPlanner
+               : kTickRestart | kTickGuess | kTickGuided | kTickMatch | kTickWindow | kTickPlanner | kTickSlots;
 }
+/// The flags of a tick or interrupt block's payload that its bytes 0-2
+/// name outside the coding byte: kTickPlanner (subtypes 5 and 6), with
+/// kTickSlots (model byte 2). Only for a payload read_tick_block() accepts.
+unsigned tick_model_flags(std::string_view payload);
 /// Whether the window holds ticks (tick_masks()) for the window flag.
 bool has_ticks(const WindowView& window);
 

@@ -51,11 +51,27 @@ grep -q -- "--tick-us" "$work/err" || { echo "FAIL error does not name --tick-us
 [ ! -e "$work/n.json" ] || { echo "FAIL output written on a usage error"; fail=1; }
 # The thorough levels code a block both as a tick block and as an interrupt
 # block and keep the smaller; the default level takes the one its check
-# chose. On a three-axis log without step smoothing made here the default
-# writes the interrupt block, the tick block is smaller: -L 19 keeps it
-# (1787 against 1798 bytes when this was written).
-python3 "$src/corpora/tools/timed_stream.py" --shapes 2 --seed 11 --tick-us 50 --axes 3 --amass-levels 0 \
-  > "$work/b.steps"
+# chose. On a log made here whose two axes step at their own times (a
+# period ramped every 250 ticks, one axis at a quarter of it, the other at
+# 0.7 of it, as no single interrupt steps them) the default writes the
+# interrupt block, the tick block is smaller: -L 19 keeps it (598 against
+# 616 bytes when this was written).
+python3 - "$work/b.steps" <<'PY'
+import sys
+period, nx, ny, out = 40.0, 3.3, 7.9, bytearray()
+for t in range(60000):
+    if t % 250 == 0:
+        period += -0.35 if t < 20000 else 0.0 if t < 40000 else 0.35
+    b = 8
+    if t >= nx:
+        b |= 1
+        nx += period / 4
+    if t >= ny:
+        b |= 4
+        ny += period * 0.7
+    out.append(b)
+open(sys.argv[1], 'wb').write(bytes(out))
+PY
 for level in 3 19; do
   "$stepzip" compress -q -f --format timed -L $level "$work/b.steps" -o "$work/b$level.stz"
   "$stepzip" decompress -q -f "$work/b$level.stz" -o "$work/b.out"

@@ -465,9 +465,25 @@ files.update({
 tplan, p_payload = first_extended_block('tick_planner.steps.stz', 6, 62)
 assert tplan[p_payload + 2] == 1, 'v2/tick_planner.steps.stz: model byte'
 files.update({
-    # A model byte other than 1 (at the model byte).
+    # A model byte no version names (255, at the model byte; 2 is the
+    # slot lines of FORMAT.md 1.17 on this mixed interrupt block).
     'v2_tick_planner_unknown_model': ('corrupt', 'byte 8 (block 0) payload byte 2',
-                                      reseal2(edit(tplan, p_payload + 2, 2))),
+                                      reseal2(edit(tplan, p_payload + 2, 255))),
+})
+# Model byte 2, the planner model with slot lines (docs/FORMAT.md 1.17),
+# from tests/golden/v2/tick_slots.steps.stz: its first block is an
+# interrupt block (subtype 6) of coding byte 62 and model byte 2; and from
+# tests/golden/v2/tick_planner_plain.steps.stz, whose first block is a
+# plain interrupt block (coding byte 132) of model byte 1.
+tslot, s_payload = first_extended_block('tick_slots.steps.stz', 6, 62)
+assert tslot[s_payload + 2] == 2, 'v2/tick_slots.steps.stz: model byte'
+tplain, q_payload = first_extended_block('tick_planner_plain.steps.stz', 6, 132)
+assert tplain[q_payload + 2] == 1, 'v2/tick_planner_plain.steps.stz: model byte'
+files.update({
+    # Slot lines on a tick block: subtype 6 set to 5 (at the model byte).
+    'v2_tick_slots_tick_block': ('corrupt', 'byte 8 (block 0) payload byte 2', reseal2(edit(tslot, s_payload, 5))),
+    # Slot lines with the plain coding: model byte 1 set to 2.
+    'v2_tick_slots_plain': ('corrupt', 'byte 8 (block 0) payload byte 2', reseal2(edit(tplain, q_payload + 2, 2))),
 })
 # Block type 7 subtype 3, the CM raw block (docs/FORMAT.md 1.15), from
 # tests/golden/v2/raw_cm.hpgl.stz: its first block is one (coding 0).
