@@ -816,7 +816,7 @@ TEST(InterruptBlock, SmallerThanTheTickBlockUnderStepSmoothing) {
 // steps by Bresenham on the interrupts, each level's grid of 2^L slots per
 // leader interval places its steps where its line is exact. The interrupt
 // block decodes and, under both mixed codings, codes the log of every
-// smoothing level at least 6 % smaller with them (12-22 % here); a tick
+// smoothing level at least 6 % smaller with them (10-31 % here); a tick
 // block and the plain coding do not take them (the same bytes).
 TEST(InterruptBlock, SlotLinesCodeASmoothedLogSmaller) {
     for (int level : {1, 2, 3}) {

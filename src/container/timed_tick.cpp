@@ -192,6 +192,10 @@ public:
     /// middle of the phases left: how far the line is past its last 1, in
     /// 1/kOne of a 1 (within [0, kOne) while the line holds).
     std::int64_t counter() const { return r_ * k_ + (lo_ + hi_) / 2 - s_ * kOne; }
+    /// The rate r it was started with (ones per letter, in 1/kOne), and
+    /// the width hi - lo of the phases left.
+    std::int64_t rate() const { return r_; }
+    std::int64_t width() const { return hi_ - lo_; }
     /// The share of the phases left that give a 1 next, as a probability of
     /// a 1 in 1/65536 (0 and 65536 when sure); -1 when there is no line.
     std::int64_t p1() const {
@@ -1066,17 +1070,24 @@ private:
     // of level L between its counter (RateGuess::counter()) before and
     // after the tick, or, while it has no line, the share of its last
     // interval elapsed. Each axis reads one slot line a level, a letter a
-    // slot: whether it stepped there.
+    // slot: whether it stepped there. A slot that the counter crossed
+    // within its uncertainty of the tick's end may come out on the next
+    // tick: its letter waits a tick.
 
     // Every slot line empty, no slot counted.
     void reset_slots() {
         for (auto& lines : slot_lines_)
             for (Follower& f : lines) f.reset(true, true);
         for (auto& a : ahead_) a.fill(0);
+        for (auto& a : pending_) a.fill(0);
         slot_at_.fill(0);
     }
     // After the leader's decision at a tick (`lead_step`: it stepped), the
-    // slots of each level the tick crosses.
+    // slots of each level the tick crosses, and whether the counter has
+    // moved on from the last of them by less than half its uncertainty:
+    // with the leader's guess, the larger of its phases' width and half
+    // its rate (a quarter tick); else the leader's advance a tick by its
+    // last interval (half a tick).
     void count_slots(int lead_step) {
         const auto ul = static_cast<std::size_t>(leader_);
         const RateGuess& lg = axis_[ul].guessed();
@@ -1086,25 +1097,39 @@ private:
         else if (gap_[ul] > 0)
             c = lead_step ? 0 : (since_[ul] + 1) * RateGuess::kOne / gap_[ul];
         c = std::clamp<std::int64_t>(c, 0, RateGuess::kOne - 1);
+        const std::int64_t band = lg.valid()     ? std::max(lg.width(), lg.rate() / 2)
+                                  : gap_[ul] > 0 ? RateGuess::kOne / gap_[ul]
+                                                 : RateGuess::kOne;
         for (std::size_t j = 0; j < kSlotLevels; ++j) {
             const int level = static_cast<int>(kSlotLevels - j);
             const int at = static_cast<int>((c << level) / RateGuess::kOne);
             crossed_[j] = std::max(lead_step ? at + (1 << level) - slot_at_[j] : at - slot_at_[j], 0);
             slot_at_[j] = at;
+            late_[j] = 2 * (c - ((static_cast<std::int64_t>(at) * RateGuess::kOne) >> level)) < band;
         }
     }
     // The slots of level j this tick crosses that axis ua has not read yet.
     int slots_left(std::size_t ua, std::size_t j) const { return std::max(crossed_[j] - ahead_[ua][j], 0); }
-    // Axis ua's decision `step` on its slot lines: the slots crossed are
-    // read as 0s but the last, read as the decision; a step where no slot
-    // is left is read on the next slot, which the ticks after then skip.
+    // Axis ua's decision `step` on its slot lines: a slot pending from
+    // the tick before is read first, as the decision; then the slots
+    // crossed are read as 0s but the last, read as the decision when the
+    // pending slot did not take it, else left pending when it lies near
+    // the tick's end (count_slots()), else read as 0. A step where no slot is left
+    // is read on the next slot, which the ticks after then skip.
     void push_slots(std::size_t ua, int step) {
         for (std::size_t j = 0; j < kSlotLevels; ++j) {
             Follower& f = slot_lines_[ua][j];
+            int& pending = pending_[ua][j];
+            int x = step;  // the decision, until a slot takes it
+            if (pending) {
+                f.push(x, f.admits());
+                pending = 0;
+                x = 0;
+            }
             const int n = crossed_[j] - ahead_[ua][j];
             if (n <= 0) {
                 ahead_[ua][j] = -n;
-                if (step) {
+                if (x) {
                     f.push(1, f.admits());
                     ++ahead_[ua][j];
                 }
@@ -1112,24 +1137,30 @@ private:
             }
             ahead_[ua][j] = 0;
             for (int k = 1; k < n; ++k) f.push(0, f.admits());
-            f.push(step, f.admits());
+            if (x || !late_[j])
+                f.push(x, f.admits());
+            else
+                pending = 1;
         }
     }
     // Model 2 of axis ua: per level, none when the tick crosses no slot
-    // left, else its slot line's next letter (Follower::guess()); with
-    // whether the leader steps now, whether the axis has stepped since it
-    // did and the admitted set.
+    // left and none is pending, else its slot line's next letter
+    // (Follower::guess()), apart for a pending slot alone; with whether the
+    // leader steps now, whether the axis has stepped since it did and the
+    // admitted set.
     std::uint64_t slot_context(std::size_t ua, int fa, int lead_step) const {
         std::uint64_t v = 0;
-        for (std::size_t j = 0; j < kSlotLevels; ++j)
-            v = v * 16 + static_cast<std::uint64_t>(slots_left(ua, j) == 0 ? 0 : 1 + slot_lines_[ua][j].guess());
+        for (std::size_t j = 0; j < kSlotLevels; ++j) {
+            const int g = slot_lines_[ua][j].guess();
+            v = v * 32 + static_cast<std::uint64_t>(slots_left(ua, j) > 0 ? 1 + g : pending_[ua][j] ? 10 + g : 0);
+        }
         return (v << 4) | (static_cast<std::uint64_t>(lead_step) << 3) | (static_cast<std::uint64_t>(moved_[ua]) << 2) |
                static_cast<std::uint64_t>(fa);
     }
     // The planned probability of a step of axis ua by the longest of its
     // slot lines whose guess holds, once kSlotLine letters long: 0 when the
-    // tick crosses no slot left of its level, else that line's probability
-    // of a 1 next; -1 without such a line.
+    // tick crosses no slot left of its level and none is pending, else that
+    // line's probability of a 1 next; -1 without such a line.
     std::int64_t slot_p1(std::size_t ua) const {
         std::size_t best = 0;
         std::int64_t length = -1;
@@ -1142,7 +1173,7 @@ private:
             }
         }
         if (length < kSlotLine) return -1;
-        return slots_left(ua, best) == 0 ? 0 : slot_lines_[ua][best].planned_p1();
+        return slots_left(ua, best) == 0 && !pending_[ua][best] ? 0 : slot_lines_[ua][best].planned_p1();
     }
     static constexpr std::size_t kSlotLevels = 3;  // L = 3, 2, 1
     static constexpr std::int64_t kSlotLine = 4;
@@ -1202,11 +1233,14 @@ private:
     std::array<Follower, kMinor> axis_;  // each axis over every tick
     std::array<Follower, kMinor> bres_;  // each axis over the ticks where the leader steps
     // Slot lines: per axis and level (L = 3, 2, 1), the line over its
-    // slots and the slots it has read ahead of the ticks; per level, the
-    // slot the leader's counter is in and the slots the tick crossed.
+    // slots, the slots it has read ahead of the ticks and whether a slot
+    // waits for the next tick; per level, the slot the leader's counter is
+    // in, the slots the tick crossed and whether the last lies near the
+    // tick's end.
     std::array<std::array<Follower, kSlotLevels>, kMinor> slot_lines_;
-    std::array<std::array<int, kSlotLevels>, kMinor> ahead_{};
+    std::array<std::array<int, kSlotLevels>, kMinor> ahead_{}, pending_{};
     std::array<int, kSlotLevels> slot_at_{}, crossed_{};
+    std::array<bool, kSlotLevels> late_{};
     int leader_ = -1;
     std::uint64_t history_ = 0;  // the step masks of the last ticks, the latest in the low bits
     std::array<int, kMinor> sign_{};
