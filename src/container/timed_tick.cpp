@@ -1362,7 +1362,7 @@ Result<void> read_ticks(std::string_view payload, int axes, bool expand, Block& 
         if (!cur.u8(model) || (model != kPlannerModel && (model != kSlotModel || !windows || !kMixedIo<Io>)))
             return make_error(Errc::corrupt, where + " byte 2: unknown model of " +
                                                  (windows ? "an interrupt block" : "a tick block"));
-        coding |= kTickPlanner | (model == kSlotModel ? kTickSlots : 0u);
+        coding |= tick_model_flags(payload);
     }
     const std::size_t header = cur.pos();
     std::uint64_t nchains, nsteps;
