@@ -34,13 +34,21 @@ bit 2i+1 = axis i DIR level (1 = negative) at the end of the tick; the
 stream runs from the tick of the first step to the tick of the last step.
 With --report FILE, a JSON list of the planned moves (steps, entry, nominal,
 exit speed in steps/s of the leading axis, acceleration in steps/s^2 of the
-leading axis) is written too.
+leading axis) is written too. With --isr-log FILE (not with --pipeline), the
+interrupt's true timing, a text line per tick of the stream: the move's
+leading axis (its Bresenham major axis, the one that steps every 2^level
+interrupts), the step-smoothing level, and how far the leading axis is
+through its interval between two steps at the tick's end, in 1/2^24 of
+the interval (interrupts since its last step plus the share of the next
+one elapsed, over 2^level; -1 0 0 before the first interrupt). A model
+of the stream can be measured against it: the slots of the interrupt
+grid that each tick crosses, known exactly.
 
 Usage: timed_stream.py [--axes 2|3] [--seed N] [--shapes N] [--steps-mm X]
                        [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM] [--scurve]
                        [--tick-us US] [--segment-ms MS] [--cpu-mhz MHZ]
                        [--amass-levels 0-3] [--pipeline] [--period-unit K]
-                       [--report FILE] > out.steps
+                       [--report FILE] [--isr-log FILE] > out.steps
 """
 import argparse
 import json
@@ -180,6 +188,9 @@ def run(blocks, a):
     amass_limits = [cpu / 8000, cpu / 4000, cpu / 2000][:a.amass_levels]
     top = a.amass_levels  # the Bresenham counters' scale: steps << top
     events = []  # (cycle, step mask, dir levels)
+    # --isr-log: per interrupt, (the cycle its steps leave, the move's leading
+    # axis, level, interrupts since the leading axis's last step, period).
+    isrs = []
     cycle = 0
     dirs = 0
     pending = 0  # --pipeline: the step mask computed in the last interrupt, output in the next
@@ -194,6 +205,8 @@ def run(blocks, a):
             events.append((cycle, 0, new_dirs))  # DIR set in the interrupt that loads the move
             dirs = new_dirs
         counters = [count << top >> 1] * a.axes
+        major = max(range(a.axes), key=lambda i: abs(d[i]))
+        since_major = 0
         done = 0
         t = 0.0
         total = position(b, 0.0)[1]
@@ -226,6 +239,8 @@ def run(blocks, a):
                     cycle += isr
                     if mask:
                         events.append((cycle, mask, dirs))
+                    since_major = 0 if mask >> major & 1 else since_major + 1
+                    isrs.append((cycle, major, level, since_major, isr))
             done += n
             t = min(t_end, total)
         if not a.pipeline:
@@ -261,7 +276,29 @@ def run(blocks, a):
         for i in range(a.axes):
             if level >> i & 1:
                 out[tick - first] |= 2 << (2 * i)
+    if a.isr_log:
+        write_isr_log(a.isr_log, isrs, first, last, tick_cycles)
     return bytes(out)
+
+
+def write_isr_log(path, isrs, first, last, tick_cycles):
+    """Writes --isr-log: per tick from `first` to `last`, the last interrupt
+    before the tick's end and how far the leading axis is through its interval
+    there."""
+    lines = []
+    j = -1
+    for tick in range(first, last + 1):
+        end = (tick + 1) * tick_cycles
+        while j + 1 < len(isrs) and isrs[j + 1][0] < end:
+            j += 1
+        if j < 0:
+            lines.append('-1 0 0')
+            continue
+        cycle, major, level, since, period = isrs[j]
+        share = (since + (end - cycle) / period) / (1 << level)
+        lines.append('%d %d %d' % (major, level, int(share * (1 << 24))))
+    with open(path, 'w') as f:
+        f.write('\n'.join(lines) + '\n')
 
 
 def main():
@@ -285,7 +322,10 @@ def main():
     p.add_argument('--period-unit', type=int, default=1,
                    help='interrupt periods above this many cycles are a multiple of it (a timer prescaler)')
     p.add_argument('--report')
+    p.add_argument('--isr-log', help='per tick, the interrupt grid the stream was made on (see above)')
     a = p.parse_args()
+    if a.isr_log and a.pipeline:
+        p.error('--isr-log does not go with --pipeline')
     for name in ('steps_mm', 'rate', 'accel'):
         v = getattr(a, name)
         setattr(a, name, (v * a.axes)[:a.axes] if len(v) == 1 else v[:a.axes])
