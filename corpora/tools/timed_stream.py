@@ -239,8 +239,9 @@ def run(blocks, a):
                     cycle += isr
                     if mask:
                         events.append((cycle, mask, dirs))
-                    since_major = 0 if mask >> major & 1 else since_major + 1
-                    isrs.append((cycle, major, level, since_major, isr))
+                    if a.isr_log:
+                        since_major = 0 if mask >> major & 1 else since_major + 1
+                        isrs.append((cycle, major, level, since_major, isr))
             done += n
             t = min(t_end, total)
         if not a.pipeline:
