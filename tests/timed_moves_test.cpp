@@ -1,6 +1,7 @@
-// Moves' speeds read out of timed chains (include/stepzip/timed.hpp):
-// trapezoid moves generated here with known speeds and acceleration, and
-// the corpus stream planned at a known acceleration.
+// Moves and their speeds read out of timed chains (include/stepzip/timed.hpp):
+// trapezoid moves generated here with known speeds and acceleration, the
+// corpus stream planned at a known acceleration, and the corpus streams'
+// planned moves (corpora/timed/*.moves) found again.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,19 +113,25 @@ TEST(TimedMoves, TooFewStepsGiveNothing) {
     EXPECT_EQ(s.acceleration, 0);
 }
 
+// The path of corpora/timed/NAME.steps, a log of one chain.
+void read_corpus_path(const std::string& name, TimedPath& p) {
+    std::ifstream f(std::string(STEPZIP_SOURCE_DIR) + "/corpora/timed/" + name + ".steps", std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    auto chains = read_chains(InputFormat::timed, ss.str());
+    ASSERT_TRUE(chains.ok());
+    ASSERT_EQ(chains->size(), 1u);
+    p = timed_path((*chains)[0]);
+}
+
 // corpora/timed/trapezoid-2axis.steps was planned at 500 mm/s² per axis,
 // 80 steps/mm (40 000 steps/s² on the leading axis of every move), 30 µs
 // ticks, axis rate limit 6000 mm/min (8000 steps/s): the moves of the path
 // with long ramps (100 steps or more) give that acceleration back within
 // 5 %, and no move is faster than the rate limit (3 % for the window).
 TEST(TimedMoves, CorpusStreamGivesItsAccelerationBack) {
-    std::ifstream f(std::string(STEPZIP_SOURCE_DIR) + "/corpora/timed/trapezoid-2axis.steps", std::ios::binary);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    auto chains = read_chains(InputFormat::timed, ss.str());
-    ASSERT_TRUE(chains.ok());
-    ASSERT_EQ(chains->size(), 1u);
-    const TimedPath p = timed_path((*chains)[0]);
+    TimedPath p;
+    ASSERT_NO_FATAL_FAILURE(read_corpus_path("trapezoid-2axis", p));
     std::size_t checked = 0, within = 0;
     for (const TimedMove& m : timed_moves(p, 30e-6)) {
         std::int64_t lead = 0;
@@ -137,6 +144,48 @@ TEST(TimedMoves, CorpusStreamGivesItsAccelerationBack) {
     }
     ASSERT_GE(checked, 2u);
     EXPECT_EQ(within, checked);
+}
+
+// corpora/timed/trapezoid-{2,3}axis.moves hold the moves the generator
+// planned (corpora/tools/regenerate.sh): timed_moves() finds about as many
+// moves, and at least 85 % of the planned moves' ends are ends of its moves
+// exactly (Douglas-Peucker alone, at 1 step: 475 moves for 62 and 8 ends,
+// 1614 for 124 and 17).
+TEST(TimedMoves, CorpusStreamsGiveTheirPlannedMovesBack) {
+    for (const char* name : {"trapezoid-2axis", "trapezoid-3axis"}) {
+        SCOPED_TRACE(name);
+        TimedPath p;
+        ASSERT_NO_FATAL_FAILURE(read_corpus_path(name, p));
+        const int axes = p.path.axes;
+        // Where each planned move ends, from the path's start.
+        std::ifstream planned(std::string(STEPZIP_SOURCE_DIR) + "/corpora/timed/" + name + ".moves");
+        std::vector<Point> ends;
+        Point at{};
+        for (std::string line; std::getline(planned, line);) {
+            std::istringstream in(line);
+            for (int i = 0; i < axes; ++i) {
+                std::int64_t v = 0;
+                ASSERT_TRUE(in >> v) << line;
+                at[static_cast<std::size_t>(i)] += v;
+            }
+            ends.push_back(at);
+        }
+        ASSERT_GE(ends.size(), 50u);
+        const std::vector<TimedMove> moves = timed_moves(p, 30e-6);
+        std::vector<Point> found;
+        Point to{};
+        for (const TimedMove& m : moves) {
+            for (int i = 0; i < axes; ++i) to[static_cast<std::size_t>(i)] += m.delta[static_cast<std::size_t>(i)];
+            found.push_back(to);
+        }
+        std::sort(found.begin(), found.end());
+        const auto hits = std::count_if(ends.begin(), ends.end(), [&](const Point& e) {
+            return std::binary_search(found.begin(), found.end(), e);
+        });
+        EXPECT_LE(std::llabs(static_cast<long long>(moves.size()) - static_cast<long long>(ends.size())),
+                  static_cast<long long>(ends.size() / 20 + 1));
+        EXPECT_GE(static_cast<double>(hits), 0.85 * static_cast<double>(ends.size()));
+    }
 }
 
 }  // namespace

@@ -90,10 +90,11 @@ python3 "$here/engrave_path.py" 5 $hershey/futural.jhf $hershey/scripts.jhf > "$
 
 # Timed STEP/DIR logs (idle ticks included) from a trapezoid planner.
 mkdir -p "$out/timed"
-python3 "$here/timed_stream.py" --shapes 2 --seed 3 --tick-us 30 > "$out/timed/trapezoid-2axis.steps"
+python3 "$here/timed_stream.py" --shapes 2 --seed 3 --tick-us 30 --moves "$out/timed/trapezoid-2axis.moves" \
+    > "$out/timed/trapezoid-2axis.steps"
 python3 "$here/timed_stream.py" --axes 3 --shapes 3 --seed 11 --steps-mm 160 160 400 \
     --rate 4000 4000 1200 --accel 300 300 100 --jd 0.01 --tick-us 40 --segment-ms 8 \
-    --cpu-mhz 20 > "$out/timed/trapezoid-3axis.steps"
+    --cpu-mhz 20 --moves "$out/timed/trapezoid-3axis.moves" > "$out/timed/trapezoid-3axis.steps"
 # Held out: never used to choose a parameter of the timed models (docs/benchmarks.md).
 python3 "$here/timed_stream.py" --shapes 1 --seed 27 --tick-us 40 --scurve > "$out/timed/heldout-scurve.steps"
 python3 "$here/timed_stream.py" --shapes 1 --seed 25 --tick-us 50 --amass-levels 0 --rate 4000 4000 \

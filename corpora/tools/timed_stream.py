@@ -34,7 +34,9 @@ bit 2i+1 = axis i DIR level (1 = negative) at the end of the tick; the
 stream runs from the tick of the first step to the tick of the last step.
 With --report FILE, a JSON list of the planned moves (steps, entry, nominal,
 exit speed in steps/s of the leading axis, acceleration in steps/s^2 of the
-leading axis) is written too. With --isr-log FILE (not with --pipeline), the
+leading axis) is written too; with --moves FILE, the same moves' signed
+step counts, a line of one integer per axis each (the moves a reader of
+the stream should find: tests/timed_moves_test.cpp). With --isr-log FILE (not with --pipeline), the
 interrupt's true timing, a text line per tick of the stream: the move's
 leading axis (its Bresenham major axis, the one that steps every 2^level
 interrupts), the step-smoothing level, and how far the leading axis is
@@ -48,7 +50,7 @@ Usage: timed_stream.py [--axes 2|3] [--seed N] [--shapes N] [--steps-mm X]
                        [--rate MM_PER_MIN] [--accel MM_PER_S2] [--jd MM] [--scurve]
                        [--tick-us US] [--segment-ms MS] [--cpu-mhz MHZ]
                        [--amass-levels 0-3] [--pipeline] [--period-unit K]
-                       [--report FILE] [--isr-log FILE] > out.steps
+                       [--report FILE] [--moves FILE] [--isr-log FILE] > out.steps
 """
 import argparse
 import json
@@ -323,6 +325,7 @@ def main():
     p.add_argument('--period-unit', type=int, default=1,
                    help='interrupt periods above this many cycles are a multiple of it (a timer prescaler)')
     p.add_argument('--report')
+    p.add_argument('--moves', help="the planned moves' signed step counts, a line each")
     p.add_argument('--isr-log', help='per tick, the interrupt grid the stream was made on (see above)')
     a = p.parse_args()
     if a.isr_log and a.pipeline:
@@ -344,6 +347,10 @@ def main():
                             exit=b['exit'] * k, accel=b['accel'] * k * peak))
         with open(a.report, 'w') as f:
             json.dump(rep, f, indent=0)
+    if a.moves:
+        with open(a.moves, 'w') as f:
+            for b in blocks:
+                f.write(' '.join(str(v) for v in b['d']) + '\n')
 
 
 if __name__ == '__main__':

@@ -78,12 +78,26 @@ struct TimedMove {
     MoveSpeeds speeds;                ///< move_speeds() on the ticks of its leading axis
 };
 
+/// How far (in steps) the path of a timed_moves() move may stray from the
+/// line between its ends by default.
+inline constexpr double kTimedMoveTolerance = 1.5;
+
 /// The moves of a timed chain: its path (timed_path()) cut into straight
 /// stretches that stay within `tolerance` steps of the line between their
-/// end points (Douglas-Peucker over the path's points; a controller's
-/// multi-axis smoothing lets the steps of a straight move wander from the
-/// exact digital line by a step, so exact segments cut moves apart), each
-/// with its speeds. Thread-safe. Complexity: O(n log n) typical, O(n^2) worst.
-std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds, double tolerance = 1.0);
+/// end points, each with its speeds. A controller's multi-axis smoothing
+/// lets the steps of a straight move wander from the exact digital line by
+/// a step or more, so exact segments would cut its moves apart: the path is
+/// cut by Douglas-Peucker, then each corner is moved (up to 10 points along
+/// the path) to where the squared distances of the points of its two
+/// stretches from their lines add up to the least, and corners whose
+/// neighbours' line keeps the points between within `tolerance` are
+/// dropped, until nothing changes (at most 12 rounds). On generated logs
+/// with known moves this finds 90-100 % of the move ends exactly, on a
+/// Grbl 1.1h log 85 % (docs/benchmarks.md "Timed streams: the moves of a
+/// log"); collinear moves that follow each other become one. Thread-safe. Complexity:
+/// O(n log n) typical for the cut, O(n^2) worst; O(n) a round for each
+/// point of a corner's reach.
+std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds,
+                                   double tolerance = kTimedMoveTolerance);
 
 }  // namespace stepzip

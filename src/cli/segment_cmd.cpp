@@ -336,7 +336,8 @@ int cmd_segment(const std::vector<std::string>& args) {
             return report(make_error(Errc::unsupported, source + ": vectors of a timed log need two axes"));
         const Drawing drawing = timed_drawing(paths, moves, timed_feed, gcode_options.step_size);
         const std::string comment = "moves read out of a timed log (" + json_number(tick_us) +
-                                    " us ticks): straight within 1 step of its path" +
+                                    " us ticks): straight within " + json_number(kTimedMoveTolerance) +
+                                    " steps of its path" +
                                     (timed_feed ? "; F: each move's cruise speed" : "");
         Result<std::string> text = std::string();
         switch (*to) {

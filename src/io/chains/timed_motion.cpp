@@ -174,13 +174,54 @@ MoveSpeeds move_speeds(std::span<const std::uint64_t> ticks, double length, doub
 
 namespace stepzip {
 
-std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, double tolerance) {
-    std::vector<TimedMove> out;
-    const Chain& path = tp.path;
-    const int axes = path.axes;
-    const std::vector<Point> pts = chain_points(path);
-    if (pts.size() < 2) return out;
-    // Douglas-Peucker: the vertices kept, by an explicit stack of spans.
+namespace {
+
+// How far the points strictly between pts[a] and pts[b] lie from the
+// segment between them (each point from its projection, clamped to the
+// segment): the largest squared distance and the first point at it (-1 and
+// a when there is no point between), and the sum of the squares.
+struct Deviation {
+    double worst = -1;
+    std::size_t at = 0;
+    double sum = 0;
+};
+Deviation deviation(const std::vector<Point>& pts, int axes, std::size_t a, std::size_t b) {
+    Deviation d;
+    d.at = a;
+    std::array<double, kMaxAxes> dir{};
+    double len2 = 0;
+    for (int i = 0; i < axes; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        dir[u] = static_cast<double>(pts[b][u] - pts[a][u]);
+        len2 += dir[u] * dir[u];
+    }
+    for (std::size_t k = a + 1; k < b; ++k) {
+        std::array<double, kMaxAxes> v{};
+        double dot = 0;
+        for (int i = 0; i < axes; ++i) {
+            const auto u = static_cast<std::size_t>(i);
+            v[u] = static_cast<double>(pts[k][u] - pts[a][u]);
+            dot += v[u] * dir[u];
+        }
+        const double t = len2 > 0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
+        double d2 = 0;
+        for (int i = 0; i < axes; ++i) {
+            const auto u = static_cast<std::size_t>(i);
+            const double e = v[u] - t * dir[u];
+            d2 += e * e;
+        }
+        d.sum += d2;
+        if (d2 > d.worst) {
+            d.worst = d2;
+            d.at = k;
+        }
+    }
+    return d;
+}
+
+// Douglas-Peucker: the points kept (first and last included), in order, by
+// an explicit stack of spans.
+std::vector<std::size_t> douglas_peucker(const std::vector<Point>& pts, int axes, double tolerance) {
     std::vector<char> keep(pts.size(), 0);
     keep.front() = keep.back() = 1;
     std::vector<std::pair<std::size_t, std::size_t>> todo{{0, pts.size() - 1}};
@@ -188,43 +229,73 @@ std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, dou
         const auto [a, b] = todo.back();
         todo.pop_back();
         if (b <= a + 1) continue;
-        std::array<double, kMaxAxes> dir{};
-        double len2 = 0;
-        for (int i = 0; i < axes; ++i) {
-            dir[static_cast<std::size_t>(i)] = static_cast<double>(pts[b][static_cast<std::size_t>(i)] - pts[a][static_cast<std::size_t>(i)]);
-            len2 += dir[static_cast<std::size_t>(i)] * dir[static_cast<std::size_t>(i)];
-        }
-        double worst = -1;
-        std::size_t at = a;
-        for (std::size_t k = a + 1; k < b; ++k) {
-            std::array<double, kMaxAxes> v{};
-            double dot = 0;
-            for (int i = 0; i < axes; ++i) {
-                const auto u = static_cast<std::size_t>(i);
-                v[u] = static_cast<double>(pts[k][u] - pts[a][u]);
-                dot += v[u] * dir[u];
-            }
-            const double t = len2 > 0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
-            double d2 = 0;
-            for (int i = 0; i < axes; ++i) {
-                const auto u = static_cast<std::size_t>(i);
-                const double e = v[u] - t * dir[u];
-                d2 += e * e;
-            }
-            if (d2 > worst) {
-                worst = d2;
-                at = k;
-            }
-        }
-        if (worst > tolerance * tolerance) {
-            keep[at] = 1;
-            todo.emplace_back(a, at);
-            todo.emplace_back(at, b);
+        const Deviation d = deviation(pts, axes, a, b);
+        if (d.worst > tolerance * tolerance) {
+            keep[d.at] = 1;
+            todo.emplace_back(a, d.at);
+            todo.emplace_back(d.at, b);
         }
     }
-    std::size_t a = 0;
-    for (std::size_t b = 1; b < pts.size(); ++b) {
-        if (!keep[b]) continue;
+    std::vector<std::size_t> v;
+    for (std::size_t k = 0; k < pts.size(); ++k)
+        if (keep[k]) v.push_back(k);
+    return v;
+}
+
+// Douglas-Peucker puts a corner on the point farthest from the chord, which
+// on a controller's path (a minor axis a step off the digital line) is
+// often a step or two beside the move's end, and then cuts the moves next
+// to it once more. Each round moves every inner corner in turn, within
+// kCornerReach points, to where the squared distances of the points of its
+// two stretches from their chords add up to the least (the first such
+// point), then drops every corner whose neighbours' chord keeps the points
+// between within the tolerance; rounds repeat until nothing moves (at most
+// kCornerRounds). Chosen on generated logs, docs/benchmarks.md "Timed
+// streams: the moves of a log".
+constexpr std::size_t kCornerReach = 10;
+constexpr int kCornerRounds = 12;
+
+void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, std::vector<std::size_t>& v) {
+    for (int round = 0; round < kCornerRounds; ++round) {
+        const std::vector<std::size_t> before = v;
+        for (std::size_t i = 1; i + 1 < v.size(); ++i) {
+            const std::size_t a = v[i - 1], c = v[i + 1];
+            const std::size_t lo = std::max(a + 1, v[i] > kCornerReach ? v[i] - kCornerReach : 0);
+            const std::size_t hi = std::min(c - 1, v[i] + kCornerReach);
+            double best = 0;
+            std::size_t at = v[i];
+            for (std::size_t k = lo; k <= hi; ++k) {
+                const double cost = deviation(pts, axes, a, k).sum + deviation(pts, axes, k, c).sum;
+                if (k == lo || cost < best - 1e-9) {
+                    best = cost;
+                    at = k;
+                }
+            }
+            v[i] = at;
+        }
+        std::vector<std::size_t> kept{v.front()};
+        for (std::size_t i = 1; i < v.size(); ++i) {
+            if (i + 1 < v.size() && std::max(deviation(pts, axes, kept.back(), v[i + 1]).worst, 0.0) <= tolerance * tolerance)
+                continue;
+            kept.push_back(v[i]);
+        }
+        v = std::move(kept);
+        if (v == before) return;
+    }
+}
+
+}  // namespace
+
+std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, double tolerance) {
+    std::vector<TimedMove> out;
+    const Chain& path = tp.path;
+    const int axes = path.axes;
+    const std::vector<Point> pts = chain_points(path);
+    if (pts.size() < 2) return out;
+    std::vector<std::size_t> corners = douglas_peucker(pts, axes, tolerance);
+    settle_corners(pts, axes, tolerance, corners);
+    for (std::size_t j = 1; j < corners.size(); ++j) {
+        const std::size_t a = corners[j - 1], b = corners[j];
         TimedMove m;
         m.first = a;
         m.last = b - 1;  // point b is after step b - 1
@@ -244,7 +315,6 @@ std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, dou
             if (step_axis(path.steps[k], lead) != 0) lead_ticks.push_back(tp.ticks[k]);
         m.speeds = move_speeds(lead_ticks, m.length, tick_seconds);
         out.push_back(m);
-        a = b;
     }
     return out;
 }
