@@ -106,6 +106,22 @@ TEST(TimedMoves, GeneratedTrapezoidsGiveTheirSettingsBack) {
     }
 }
 
+// A move at a constant rate whose last stepper segment runs faster (8
+// ticks a step, then its last 10 steps at 7, as a controller finishes a
+// move on time): the cruise is the rate held, not the fastest window (which
+// read about 9 % more).
+TEST(TimedMoves, ConstantRateMoveReadsTheRateHeld) {
+    std::vector<std::uint64_t> ticks;
+    std::uint64_t at = 100;
+    for (int k = 0; k < 160; ++k) {
+        ticks.push_back(at);
+        at += k < 150 ? 8 : 7;
+    }
+    const double tick = 40e-6, held = 1.0 / (8 * tick);  // steps/s (length = steps: an axis-parallel move)
+    const MoveSpeeds s = move_speeds(ticks, 160.0, tick);
+    EXPECT_NEAR(s.cruise, held, 0.02 * held);
+}
+
 TEST(TimedMoves, TooFewStepsGiveNothing) {
     const std::uint64_t one[] = {4};
     const MoveSpeeds s = move_speeds(one, 1.0, 1e-5);

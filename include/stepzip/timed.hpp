@@ -47,7 +47,7 @@ TimedPath timed_path(const Chain& timed_chain);
 /// steps/s^2.
 struct MoveSpeeds {
     double entry = 0;         ///< speed where the move starts
-    double cruise = 0;        ///< fastest speed held (over a window of steps)
+    double cruise = 0;        ///< speed held between the ramps (see move_speeds())
     double exit = 0;          ///< speed where the move ends
     double acceleration = 0;  ///< of the ramps (0 when neither ramp has 6 steps)
     std::uint64_t ramp_steps = 0;  ///< leading-axis steps the acceleration was fitted on
@@ -56,9 +56,12 @@ struct MoveSpeeds {
 /// Reads a move's speeds from `lead_ticks`, the ticks of the steps of its
 /// leading axis (strictly increasing), `length` (> 0) and the tick length.
 /// The local speed at step k is taken over a window of w steps on either
-/// side (w = n / 16, clamped to 2..16); the cruise speed is the largest; the
-/// ramp up runs from the first step to the first whose local speed reaches
-/// 97 % of it, the ramp down from the last such step to the end. A ramp of
+/// side (w = n / 16, clamped to 2..16). The cruise speed is the mean speed
+/// from the first to the last step whose local speed reaches 97 % of the
+/// 90th percentile of the local speeds, when that plateau spans more than
+/// 4w steps, else the largest local speed (a peak). The ramp up runs from
+/// the first step to the first whose local speed reaches 97 % of the
+/// largest, the ramp down from the last such step to the end. A ramp of
 /// at least 6 steps is fitted with a parabola in time by least squares
 /// (step times at the middle of their tick); its curvature is its
 /// acceleration and the entry (exit) speed is the parabola's speed where it
