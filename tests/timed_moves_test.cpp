@@ -122,6 +122,19 @@ TEST(TimedMoves, ConstantRateMoveReadsTheRateHeld) {
     EXPECT_NEAR(s.cruise, held, 0.02 * held);
 }
 
+// A move at one planned speed whose stepper segments alternate between
+// two rates 20 % apart (24 and 20 ticks a step, 15 steps each): it starts
+// and ends near its speed, so the cruise is its mean speed (the stretch
+// near the fastest rate alone read 3 % over it).
+TEST(TimedMoves, AlternatingSegmentsReadTheirMeanSpeed) {
+    std::vector<std::uint64_t> ticks{0};
+    for (int k = 1; k < 60; ++k) ticks.push_back(ticks.back() + ((k - 1) / 15 % 2 == 0 ? 24 : 20));
+    const double tick = 30e-6;
+    const double mean = 59.0 / (static_cast<double>(ticks.back() - ticks.front()) * tick);
+    const MoveSpeeds s = move_speeds(ticks, 60.0, tick);
+    EXPECT_NEAR(s.cruise, mean, 0.01 * mean);
+}
+
 TEST(TimedMoves, TooFewStepsGiveNothing) {
     const std::uint64_t one[] = {4};
     const MoveSpeeds s = move_speeds(one, 1.0, 1e-5);

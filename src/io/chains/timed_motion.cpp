@@ -130,6 +130,10 @@ double speed_at(const std::array<double, 3>& c, double at) {
 
 constexpr std::size_t kMinRamp = 6;
 constexpr double kCruiseShare = 0.97;
+// Entry and exit at this share of the cruise or more: no ramp to speak of
+// (chosen on generated logs, docs/benchmarks.md "Timed streams: the moves
+// of a log").
+constexpr double kFlatShare = 0.85;
 
 // The first of the speeds `v` that reaches `level` (v.size() when none) and
 // one past the last (0 when none).
@@ -188,6 +192,10 @@ MoveSpeeds move_speeds(std::span<const std::uint64_t> ticks, double length, doub
         out.ramp_steps += n - (down - 1);
     }
     if (out.ramp_steps != 0) out.acceleration = weighted / static_cast<double>(out.ramp_steps);
+    // A move that starts and ends near its cruise speed (a constant-speed
+    // move, stepper segments a few per cent apart): its mean speed.
+    if (out.entry >= kFlatShare * out.cruise && out.exit >= kFlatShare * out.cruise && t[n - 1] > t[0])
+        out.cruise = (s[n - 1] - s[0]) / (t[n - 1] - t[0]);
     return out;
 }
 
