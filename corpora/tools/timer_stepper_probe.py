@@ -35,11 +35,21 @@ the move's rate change from its previous two segments (0 when the predicted
 period is one of the periods that fit), a move's first segment 18 bits; per
 move the step counts as signed Elias-gamma codes.
 
+With --restart the moves are those `stepzip segment --format timed --to
+json` found in the log (JOB is that JSON): a move that does not fit is
+passed over and the fit starts afresh at the next move's first step, with
+its timing unknown; the probe then reports how many moves it fitted whole
+and how many of the log's steps they hold (a coder that finds the moves in
+the log would fit these; docs/benchmarks.md "Timed streams: the moves of a
+log").
+
 Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [--steps-mm 100]
          [--cycles-per-tick 640] [--thresholds 2000,4000,8000]
          [--segment-cycles 160000] [--segments OUT.json]
+       timer_stepper_probe.py LOG MOVES.json --restart [...]
 """
 import argparse
+import bisect
 import json
 import math
 import struct
@@ -75,7 +85,10 @@ def read_moves(path, steps_mm):
     2-axis G-code job (G0/G1 X.. Y.., absolute mm)."""
     text = open(path).read()
     if path.endswith('.json'):
-        return [tuple(b['steps']) for b in json.loads(text)]
+        doc = json.loads(text)
+        if isinstance(doc, dict):  # stepzip segment --to json
+            return [tuple(m['delta']) for m in doc['chains'][0]['moves']]
+        return [tuple(b['steps']) for b in doc]
     pos = [0, 0]; moves = []
     for line in text.split('\n'):
         if not line.startswith(('G0 ', 'G1 ')): continue
@@ -199,7 +212,9 @@ class Model:
         return False
 
 
-def fit(model, moves, evt, evm, dirch, limit=3000):
+def fit(model, moves, evt, evm, dirch, limit=3000, k0=0, dptr0=0, dcur0=0):
+    """The deepest fit found: (step events matched, segments). It starts at
+    step event k0, the next DIR change dirch[dptr0], DIR levels dcur0."""
     NA = len(moves[0])
     dirbits = [sum(1 << a for a in range(NA) if m[a] < 0) for m in moves]
 
@@ -234,8 +249,8 @@ def fit(model, moves, evt, evm, dirch, limit=3000):
         return [x[1:] for x in out]
 
     c0, E0 = start(0)
-    stack = [[(0, c0, E0, 0, -(1 << 40), 1 << 40, 0, True, 0, 0), None, None, 0]]
-    best = (0, []); bt = 0
+    stack = [[(0, c0, E0, k0, -(1 << 40), 1 << 40, 0, True, dptr0, dcur0), None, None, 0]]
+    best = (k0, []); bt = 0
     while stack:
         fr = stack[-1]; st = fr[0]
         if st[0] >= len(moves):
@@ -338,6 +353,26 @@ def cost(segs, conc, moves):
     return seg_bits, move_bits, misses
 
 
+def fit_restarting(model, moves, doc, evt, evm, dirch):
+    """--restart: fit from each move that the fit before could not pass."""
+    found = doc['chains'][0]['moves']
+    first = [bisect.bisect_left(evt, m['ticks'][0]) for m in found] + [len(evt)]
+    dticks = [t for t, _ in dirch]
+    b = fitted = held = restarts = 0
+    while b < len(moves):
+        k0 = first[b]
+        dptr = bisect.bisect_right(dticks, found[b - 1]['ticks'][1]) if b > 0 else 0
+        k, _ = fit(model, moves[b:], evt, evm, dirch, k0=k0, dptr0=dptr, dcur0=dirch[dptr - 1][1] if dptr > 0 else 0)
+        stop = len(moves) if k >= len(evt) else bisect.bisect_right(first, k) - 1  # the move of the first step not fitted
+        fitted += stop - b
+        held += first[stop] - k0
+        restarts += stop < len(moves)
+        b = max(stop + 1, b + 1)
+    print('moves fitted whole', fitted, 'of', len(moves), '(restarts', restarts, end=')\n')
+    print('step events in them', held, 'of', len(evt))
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('log'); ap.add_argument('job')
@@ -346,10 +381,14 @@ def main():
     ap.add_argument('--thresholds', default='2000,4000,8000')
     ap.add_argument('--segment-cycles', type=int, default=160000)
     ap.add_argument('--segments', help='write the fitted segments (level, interrupts, move, c, P) as JSON')
+    ap.add_argument('--restart', action='store_true',
+                    help="JOB is stepzip segment's JSON; pass over moves that do not fit")
     a = ap.parse_args()
     model = Model(a.cycles_per_tick, [int(v) for v in a.thresholds.split(',')], a.segment_cycles)
     moves = read_moves(a.job, a.steps_mm)
     d, evt, evm, dirch = read_log(a.log, len(moves[0]))
+    if a.restart:
+        return fit_restarting(model, moves, json.load(open(a.job)), evt, evm, dirch)
     k, segs = fit(model, moves, evt, evm, dirch)
     last = segs[-1][2] if segs else -1
     print('moves fitted', last + 1 if k == len(evt) else last, 'of', len(moves))

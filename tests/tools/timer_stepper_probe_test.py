@@ -75,6 +75,24 @@ def run(log, report):
     return r.returncode, r.stdout
 
 
+def found_moves(log, moves):
+    """`stepzip segment --to json` of the log when it finds `moves` (each
+    with the ticks of its first and last step): the moves' ends are where
+    the log's position first reaches them."""
+    d, evt, evm, dirch = probe.read_log(log, len(moves[0]))
+    pos = [0] * len(moves[0]); ends = []; k = 0; dbits = 0; di = 0; want = [0] * len(moves[0])
+    for m in moves:
+        want = [want[a] + m[a] for a in range(len(m))]
+        start = k
+        while pos != want:
+            while di < len(dirch) and dirch[di][0] <= evt[k]: dbits = dirch[di][1]; di += 1
+            for a in range(len(pos)):
+                if evm[k] >> a & 1: pos[a] += -1 if dbits >> a & 1 else 1
+            k += 1
+        ends.append((evt[start], evt[k - 1]))
+    return {'chains': [{'moves': [{'delta': list(m), 'ticks': list(t)} for m, t in zip(moves, ends)]}]}
+
+
 def main():
     moves = [(900, 350), (-120, 260), (0, -700), (40, -15), (-820, -595)]
     speeds = [(0, 900, 4000), (900, 0, 3000), (0, 0, 5000), (0, 300, 2000), (300, 0, 4500)]
@@ -105,6 +123,22 @@ def main():
         rc, out = run(log, report)
         print(out)
         assert rc != 0 and 'moves fitted %d of' % len(moves) not in out
+        # --restart on the moves found in a log: all of them; with the third
+        # move (straight down) cut in two, its first half fits (a move may end
+        # anywhere), the second does not, and the fit starts again after it
+        segs = write_log(moves, speeds, log)
+        total = sum(1 for v in open(log, 'rb').read() if v & 0x15)
+        cut = moves[:2] + [(0, -350), (0, -350)] + moves[3:]
+        for given, fitted in ((moves, len(moves)), (cut, len(moves))):
+            with open(report, 'w') as f:
+                json.dump(found_moves(log, given), f)
+            r = subprocess.run([sys.executable, PROBE, log, report, '--restart'], capture_output=True, text=True)
+            print(r.stdout)
+            assert r.returncode == 0
+            restarts = len(given) - fitted
+            assert 'moves fitted whole %d of %d (restarts %d)' % (fitted, len(given), restarts) in r.stdout, r.stdout
+            if fitted == len(given):
+                assert 'step events in them %d of %d' % (total, total) in r.stdout, r.stdout
     print('ok')
 
 
