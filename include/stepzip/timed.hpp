@@ -61,9 +61,9 @@ struct MoveSpeeds {
 /// 90th percentile of the local speeds, when that plateau spans more than
 /// 4w steps, else the largest local speed (a peak); when the entry and
 /// exit speeds (below) are both 85 % of that or more, the mean speed over
-/// the whole move instead. The ramp up runs from
-/// the first step to the first whose local speed reaches 97 % of the
-/// largest, the ramp down from the last such step to the end. A ramp of
+/// the whole move instead. The ramp up runs from the first step to the
+/// first whose local speed reaches 97 % of the largest, the ramp down from
+/// the last such step to the end. A ramp of
 /// at least 6 steps is fitted with a parabola in time by least squares
 /// (step times at the middle of their tick); its curvature is its
 /// acceleration and the entry (exit) speed is the parabola's speed where it
@@ -99,9 +99,9 @@ inline constexpr double kTimedMoveTolerance = 1.5;
 /// dropped, until nothing changes (at most 12 rounds). On generated logs
 /// with known moves this finds 90-100 % of the move ends exactly, on a
 /// Grbl 1.1h log 85 % (docs/benchmarks.md "Timed streams: the moves of a
-/// log"); collinear moves that follow each other become one. Thread-safe. Complexity:
-/// O(n log n) typical for the cut, O(n^2) worst; O(n) a round for each
-/// point of a corner's reach.
+/// log"); collinear moves that follow each other become one. Thread-safe.
+/// Complexity: O(n log n) typical for the cut, O(n^2) worst; O(n) a round
+/// for each point of a corner's reach.
 std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds,
                                    double tolerance = kTimedMoveTolerance);
 

@@ -165,7 +165,7 @@ MoveSpeeds move_speeds(std::span<const std::uint64_t> ticks, double length, doub
     }
     // The cruise: the mean speed over the plateau, from the first to the
     // last step whose local speed reaches kCruiseShare of the 90th
-    // percentile of them, when it spans 4 windows or more; else the fastest
+    // percentile of them, when it spans more than 4 windows; else the fastest
     // window. (A constant-rate move's stepper segments run a few per cent
     // apart, and its fastest window overstated the rate by 4-10 % on
     // generated logs: docs/benchmarks.md "Timed streams: the moves of a log".)
