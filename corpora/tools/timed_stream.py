@@ -37,8 +37,8 @@ exit speed in steps/s of the leading axis, acceleration in steps/s^2 of the
 leading axis) is written too; with --moves FILE, the same moves' signed
 step counts, a line of one integer per axis each (the moves a reader of
 the stream should find: tests/timed_moves_test.cpp). With --isr-log FILE
-(not with --pipeline), the interrupt's true timing, a text line per tick of the stream: the move's
-leading axis (its Bresenham major axis, the one that steps every 2^level
+(not with --pipeline), the interrupt's true timing, a text line per tick
+of the stream: the move's leading axis (its Bresenham major axis, the one that steps every 2^level
 interrupts), the step-smoothing level, and how far the leading axis is
 through its interval between two steps at the tick's end, in 1/2^24 of
 the interval (interrupts since its last step plus the share of the next

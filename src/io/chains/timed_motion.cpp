@@ -215,24 +215,25 @@ struct Deviation {
     double sum = 0;
 };
 Deviation deviation(const std::vector<Point>& pts, int axes, std::size_t a, std::size_t b) {
+    // pts[k] - pts[a] per axis, and a dot product of two such offsets
+    auto offset = [&](std::size_t k) {
+        std::array<double, kMaxAxes> o{};
+        for (int i = 0; i < axes; ++i)
+            o[static_cast<std::size_t>(i)] = static_cast<double>(pts[k][static_cast<std::size_t>(i)] - pts[a][static_cast<std::size_t>(i)]);
+        return o;
+    };
+    auto dot = [axes](const std::array<double, kMaxAxes>& x, const std::array<double, kMaxAxes>& y) {
+        double r = 0;
+        for (int i = 0; i < axes; ++i) r += x[static_cast<std::size_t>(i)] * y[static_cast<std::size_t>(i)];
+        return r;
+    };
     Deviation d;
     d.at = a;
-    std::array<double, kMaxAxes> dir{};
-    double len2 = 0;
-    for (int i = 0; i < axes; ++i) {
-        const auto u = static_cast<std::size_t>(i);
-        dir[u] = static_cast<double>(pts[b][u] - pts[a][u]);
-        len2 += dir[u] * dir[u];
-    }
+    const std::array<double, kMaxAxes> dir = offset(b);
+    const double len2 = dot(dir, dir);
     for (std::size_t k = a + 1; k < b; ++k) {
-        std::array<double, kMaxAxes> v{};
-        double dot = 0;
-        for (int i = 0; i < axes; ++i) {
-            const auto u = static_cast<std::size_t>(i);
-            v[u] = static_cast<double>(pts[k][u] - pts[a][u]);
-            dot += v[u] * dir[u];
-        }
-        const double t = len2 > 0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
+        const std::array<double, kMaxAxes> v = offset(k);
+        const double t = len2 > 0 ? std::clamp(dot(v, dir) / len2, 0.0, 1.0) : 0.0;
         double d2 = 0;
         for (int i = 0; i < axes; ++i) {
             const auto u = static_cast<std::size_t>(i);
@@ -304,7 +305,8 @@ void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, s
         }
         std::vector<std::size_t> kept{v.front()};
         for (std::size_t i = 1; i < v.size(); ++i) {
-            if (i + 1 < v.size() && std::max(deviation(pts, axes, kept.back(), v[i + 1]).worst, 0.0) <= tolerance * tolerance)
+            // (worst is -1 when no point lies between: dropped as well)
+            if (i + 1 < v.size() && deviation(pts, axes, kept.back(), v[i + 1]).worst <= tolerance * tolerance)
                 continue;
             kept.push_back(v[i]);
         }
