@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -208,13 +210,18 @@ namespace {
 // How far the points strictly between pts[a] and pts[b] lie from the
 // segment between them (each point from its projection, clamped to the
 // segment): the largest squared distance and the first point at it (-1 and
-// a when there is no point between), and the sum of the squares.
+// a when there is no point between), and the sum of the squares. With a
+// finite `limit`, it stops as soon as base + the sum so far reaches it
+// (`cut` then set): the whole sum would reach it too, since every term is
+// at least 0 and rounded addition is monotonic.
 struct Deviation {
     double worst = -1;
     std::size_t at = 0;
     double sum = 0;
+    bool cut = false;
 };
-Deviation deviation(const std::vector<Point>& pts, int axes, std::size_t a, std::size_t b) {
+Deviation deviation(const std::vector<Point>& pts, int axes, std::size_t a, std::size_t b, double base = 0,
+                    double limit = std::numeric_limits<double>::infinity()) {
     // pts[k] - pts[a] per axis, and a dot product of two such offsets
     auto offset = [&](std::size_t k) {
         std::array<double, kMaxAxes> o{};
@@ -244,6 +251,10 @@ Deviation deviation(const std::vector<Point>& pts, int axes, std::size_t a, std:
         if (d2 > d.worst) {
             d.worst = d2;
             d.at = k;
+        }
+        if (base + d.sum >= limit) {
+            d.cut = true;
+            break;
         }
     }
     return d;
@@ -285,29 +296,53 @@ std::vector<std::size_t> douglas_peucker(const std::vector<Point>& pts, int axes
 constexpr std::size_t kCornerReach = 10;
 constexpr int kCornerRounds = 12;
 
+// The place of a corner between corners a and c, searched from `from`.
+// A place's cost stops being summed once it cannot beat the best so far
+// (the stretch after the place first: its first points, near the corner,
+// deviate the most); the same place is chosen as when every cost is whole.
+std::size_t best_corner(const std::vector<Point>& pts, int axes, std::size_t a, std::size_t from, std::size_t c) {
+    const std::size_t lo = std::max(a + 1, from > kCornerReach ? from - kCornerReach : 0);
+    const std::size_t hi = std::min(c - 1, from + kCornerReach);
+    double limit = std::numeric_limits<double>::infinity();  // best - 1e-9
+    std::size_t at = from;
+    for (std::size_t k = lo; k <= hi; ++k) {
+        const Deviation after = deviation(pts, axes, k, c, 0, limit);
+        if (after.cut) continue;
+        const Deviation before = deviation(pts, axes, a, k, after.sum, limit);
+        if (before.cut) continue;
+        const double cost = before.sum + after.sum;
+        if (cost < limit) {
+            limit = cost - 1e-9;
+            at = k;
+        }
+    }
+    return at;
+}
+
 void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, std::vector<std::size_t>& v) {
+    // (a, from, c) of the searches that left their corner in place: the
+    // same search again would too
+    std::set<std::array<std::size_t, 3>> settled;
+    // the chords found too far from their points to drop the corner between
+    std::set<std::array<std::size_t, 2>> needed;
     for (int round = 0; round < kCornerRounds; ++round) {
         const std::vector<std::size_t> before = v;
         for (std::size_t i = 1; i + 1 < v.size(); ++i) {
-            const std::size_t a = v[i - 1], c = v[i + 1];
-            const std::size_t lo = std::max(a + 1, v[i] > kCornerReach ? v[i] - kCornerReach : 0);
-            const std::size_t hi = std::min(c - 1, v[i] + kCornerReach);
-            double best = 0;
-            std::size_t at = v[i];
-            for (std::size_t k = lo; k <= hi; ++k) {
-                const double cost = deviation(pts, axes, a, k).sum + deviation(pts, axes, k, c).sum;
-                if (k == lo || cost < best - 1e-9) {
-                    best = cost;
-                    at = k;
-                }
-            }
-            v[i] = at;
+            const std::array<std::size_t, 3> key{v[i - 1], v[i], v[i + 1]};
+            if (settled.contains(key)) continue;
+            v[i] = best_corner(pts, axes, v[i - 1], v[i], v[i + 1]);
+            if (v[i] == key[1]) settled.insert(key);
         }
         std::vector<std::size_t> kept{v.front()};
         for (std::size_t i = 1; i < v.size(); ++i) {
             // (worst is -1 when no point lies between: dropped as well)
-            if (i + 1 < v.size() && deviation(pts, axes, kept.back(), v[i + 1]).worst <= tolerance * tolerance)
-                continue;
+            if (i + 1 < v.size()) {
+                const std::array<std::size_t, 2> chord{kept.back(), v[i + 1]};
+                if (!needed.contains(chord)) {
+                    if (deviation(pts, axes, chord[0], chord[1]).worst <= tolerance * tolerance) continue;
+                    needed.insert(chord);
+                }
+            }
             kept.push_back(v[i]);
         }
         v = std::move(kept);
