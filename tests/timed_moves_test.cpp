@@ -217,5 +217,24 @@ TEST(TimedMoves, CorpusStreamsGiveTheirPlannedMovesBack) {
     }
 }
 
+// corpora/timed/grbl-excerpt.steps: 5098 ticks of the Grbl 1.1h stream of
+// ../shared/corpora-timed holding four moves of its job (.moves). Alone,
+// each of the two inner corners comes to rest a step beside its end, each
+// held there by the other; moving them together finds all four moves.
+TEST(TimedMoves, NeighbouringCornersMoveTogether) {
+    TimedPath p;
+    ASSERT_NO_FATAL_FAILURE(read_corpus_path("grbl-excerpt", p));
+    std::ifstream planned(std::string(STEPZIP_SOURCE_DIR) + "/corpora/timed/grbl-excerpt.moves");
+    std::vector<Point> want;
+    for (std::int64_t x = 0, y = 0; planned >> x >> y;) want.push_back(Point{x, y});
+    ASSERT_EQ(want.size(), 4u);
+    const std::vector<TimedMove> moves = timed_moves(p, 40e-6);
+    ASSERT_EQ(moves.size(), want.size());
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+        EXPECT_EQ(moves[i].delta[0], want[i][0]) << "move " << i;
+        EXPECT_EQ(moves[i].delta[1], want[i][1]) << "move " << i;
+    }
+}
+
 }  // namespace
 }  // namespace stepzip

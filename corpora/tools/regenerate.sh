@@ -103,6 +103,17 @@ python3 "$here/timed_stream.py" --axes 3 --shapes 1 --seed 26 --tick-us 50 --pip
     > "$out/timed/heldout-pipeline-3axis.steps"
 python3 "$here/timed_stream.py" --axes 3 --shapes 1 --seed 31 --steps-mm 100 100 400 --rate 5000 5000 1500 \
     --accel 800 800 200 --tick-us 25 --segment-ms 6 --cpu-mhz 12 > "$out/timed/heldout-fast-3axis.steps"
+# An excerpt of the Grbl 1.1h stream of ../shared/corpora-timed (beside the
+# project): ticks 84663-89760, the job's G1 lines 38-41, whose moves (in
+# steps at 100 steps/mm) are grbl-excerpt.moves.
+shared=$root/../shared/corpora-timed
+if [ -f "$shared/grbl_hershey.steps.xz" ]; then
+  xz -dc "$shared/grbl_hershey.steps.xz" > "$tmp/grbl.steps"
+  head -c 89761 "$tmp/grbl.steps" | tail -c 5098 > "$out/timed/grbl-excerpt.steps"
+  printf '24 -72\n47 -47\n48 -24\n71 0\n' > "$out/timed/grbl-excerpt.moves"
+else
+  echo "regenerate.sh: $shared not found: corpora/timed/grbl-excerpt.* left as they are" >&2
+fi
 
 # The worst case: random walks.
 python3 "$here/random_walk.py" 8 100000 1 > "$out/random/walk-8.fc"

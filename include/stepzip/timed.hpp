@@ -96,12 +96,16 @@ inline constexpr double kTimedMoveTolerance = 1.5;
 /// the path) to where the squared distances of the points of its two
 /// stretches from their lines add up to the least, and corners whose
 /// neighbours' line keeps the points between within `tolerance` are
-/// dropped, until nothing changes (at most 12 rounds). On generated logs
-/// with known moves this finds 90-100 % of the move ends exactly, on a
-/// Grbl 1.1h log 85 % (docs/benchmarks.md "Timed streams: the moves of a
-/// log"); collinear moves that follow each other become one. Thread-safe.
+/// dropped, until nothing changes (at most 12 rounds); then neighbouring
+/// corners are moved in pairs (up to 2 points each) where their three
+/// stretches fit better and stay within `tolerance`, until nothing
+/// changes. On generated logs with known moves this finds 90-100 % of the
+/// move ends exactly, on a Grbl 1.1h log 93 % (docs/benchmarks.md "Timed
+/// streams: neighbouring corners moved together"); collinear moves that
+/// follow each other become one. Thread-safe.
 /// Complexity: O(n log n) typical for the cut, O(n^2) worst; O(n) a round
-/// for each point of a corner's reach.
+/// for each point of a corner's reach, and for each pair of places of two
+/// neighbouring corners.
 std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds,
                                    double tolerance = kTimedMoveTolerance);
 

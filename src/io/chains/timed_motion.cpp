@@ -350,6 +350,65 @@ void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, s
     }
 }
 
+// Two neighbouring corners a step or two off their moves' ends (a short
+// move between, both its ends beside the truth) hold each other in place:
+// moving either alone costs more. Each round therefore moves every pair of
+// neighbouring corners together, each within kPairReach points, to where
+// the squared distances of the points of their three stretches from their
+// chords add up to less than where they are (by more than 1e-9; the first
+// such places, the first corner's nearer offsets first; none that lets a
+// stretch stray farther than the tolerance from its chord), until nothing
+// moves (at most kCornerRounds). kPairReach chosen on the generated logs
+// (1, 2 and 3 tried), docs/benchmarks.md "Timed streams: the moves of a log".
+constexpr std::ptrdiff_t kPairReach = 2;
+
+void settle_pairs(const std::vector<Point>& pts, int axes, double tolerance, std::vector<std::size_t>& v) {
+    auto straight = [&](std::size_t a, std::size_t b) { return deviation(pts, axes, a, b).worst <= tolerance * tolerance; };
+    auto cost = [&](std::size_t a, std::size_t p, std::size_t q, std::size_t c, double limit, bool& cut) {
+        const Deviation x = deviation(pts, axes, a, p, 0, limit);
+        const Deviation y = x.cut ? x : deviation(pts, axes, p, q, x.sum, limit);
+        const Deviation z = y.cut ? y : deviation(pts, axes, q, c, x.sum + y.sum, limit);
+        cut = z.cut;
+        return x.sum + y.sum + z.sum;
+    };
+    // (a, p, q, c) of the searches that left both corners in place
+    std::set<std::array<std::size_t, 4>> settled;
+    for (int round = 0; round < kCornerRounds; ++round) {
+        bool moved = false;
+        for (std::size_t i = 1; i + 2 < v.size(); ++i) {
+            const std::array<std::size_t, 4> key{v[i - 1], v[i], v[i + 1], v[i + 2]};
+            if (settled.contains(key)) continue;
+            const auto [a, p, q, c] = key;
+            bool cut = false;
+            double limit = cost(a, p, q, c, std::numeric_limits<double>::infinity(), cut) - 1e-9;
+            std::size_t bp = p, bq = q;
+            for (std::ptrdiff_t dp = -kPairReach; dp <= kPairReach; ++dp)
+                for (std::ptrdiff_t dq = -kPairReach; dq <= kPairReach; ++dq) {
+                    const auto np = static_cast<std::ptrdiff_t>(p) + dp, nq = static_cast<std::ptrdiff_t>(q) + dq;
+                    if ((dp == 0 && dq == 0) || np <= static_cast<std::ptrdiff_t>(a) || nq <= np ||
+                        nq >= static_cast<std::ptrdiff_t>(c))
+                        continue;
+                    const double x = cost(a, static_cast<std::size_t>(np), static_cast<std::size_t>(nq), c, limit, cut);
+                    if (!cut && x < limit && straight(a, static_cast<std::size_t>(np)) &&
+                        straight(static_cast<std::size_t>(np), static_cast<std::size_t>(nq)) &&
+                        straight(static_cast<std::size_t>(nq), c)) {
+                        limit = x - 1e-9;
+                        bp = static_cast<std::size_t>(np);
+                        bq = static_cast<std::size_t>(nq);
+                    }
+                }
+            if (bp == p && bq == q) {
+                settled.insert(key);
+            } else {
+                v[i] = bp;
+                v[i + 1] = bq;
+                moved = true;
+            }
+        }
+        if (!moved) return;
+    }
+}
+
 }  // namespace
 
 std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, double tolerance) {
@@ -360,6 +419,7 @@ std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, dou
     if (pts.size() < 2) return out;
     std::vector<std::size_t> corners = douglas_peucker(pts, axes, tolerance);
     settle_corners(pts, axes, tolerance, corners);
+    settle_pairs(pts, axes, tolerance, corners);
     for (std::size_t j = 1; j < corners.size(); ++j) {
         const std::size_t a = corners[j - 1], b = corners[j];
         TimedMove m;
