@@ -15,8 +15,10 @@
 #include "stepzip.h"
 #include "stepzip/container.hpp"
 #include "stepzip/profile.hpp"
+#include "stepzip/document.hpp"
 #include "stepzip/segmenter.hpp"
 #include "stepzip/streaming.hpp"
+#include "stepzip/timed.hpp"
 #include "stepzip/vectors.hpp"
 #include "stepzip/version.hpp"
 
@@ -299,6 +301,7 @@ PYBIND11_MODULE(_stepzip, m) {
     m.attr("__version__") = version_string();
     m.attr("FORMAT_VERSION") = kFormatVersion;
     m.attr("MAX_AXES") = kMaxAxes;
+    m.attr("TIMED_MOVE_TOLERANCE") = kTimedMoveTolerance;
     py::list profiles;
     for (Profile p : kAllProfiles) profiles.append(std::string(profile_name(p)));
     m.attr("PROFILES") = py::tuple(profiles);
@@ -448,6 +451,46 @@ PYBIND11_MODULE(_stepzip, m) {
             return out;
         },
         py::arg("text"), py::arg("profile"), py::arg("format"), py::arg("step_size"));
+
+    m.def(
+        "timed_moves",
+        [](const py::object& log, double tick_us, double tolerance) {
+            // (the wrapper checked both numbers)
+            const ByteView in(log, "log");
+            std::optional<Result<std::vector<Chain>>> chains;
+            std::vector<TimedPath> paths;
+            std::vector<std::vector<TimedMove>> moves;
+            {
+                py::gil_scoped_release release;
+                chains = read_chains(InputFormat::timed, in.view(), "log");
+                if (*chains)
+                    for (const Chain& c : **chains) {
+                        paths.push_back(timed_path(c));
+                        moves.push_back(timed_moves(paths.back(), tick_us * 1e-6, tolerance));
+                    }
+            }
+            if (!*chains) raise(chains->error());
+            // As `stepzip segment --format timed --to json`: per chain its
+            // path's start, its step count and its moves.
+            py::list out;
+            for (std::size_t c = 0; c < paths.size(); ++c) {
+                const Chain& path = paths[c].path;
+                const auto axes = static_cast<std::size_t>(path.axes);
+                py::list ms;
+                for (const TimedMove& m : moves[c]) {
+                    py::tuple delta(axes);
+                    for (std::size_t i = 0; i < axes; ++i) delta[i] = m.delta[i];
+                    ms.append(py::make_tuple(delta, py::make_tuple(m.first_tick, m.last_tick), m.length,
+                                             m.speeds.entry, m.speeds.cruise, m.speeds.exit,
+                                             m.speeds.acceleration, m.speeds.ramp_steps));
+                }
+                py::tuple start(axes);
+                for (std::size_t i = 0; i < axes; ++i) start[i] = path.start[i];
+                out.append(py::make_tuple(start, path.steps.size(), ms));
+            }
+            return out;
+        },
+        py::arg("log"), py::arg("tick_us"), py::arg("tolerance"));
 
     m.def(
         "freeman_to_steps",

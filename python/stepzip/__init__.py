@@ -18,6 +18,7 @@ never repeats the data.
 from __future__ import annotations
 
 import decimal
+import math
 import numbers
 import threading
 from typing import Any, BinaryIO, List, NamedTuple, Optional, Tuple, Union
@@ -26,15 +27,16 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _stepzip
-from ._stepzip import FORMAT_VERSION, MAX_AXES, PROFILES, Error
+from ._stepzip import FORMAT_VERSION, MAX_AXES, PROFILES, TIMED_MOVE_TOLERANCE, Error
 
 __version__: str = _stepzip.__version__
 
 __all__ = [
-    "Error", "FORMAT_VERSION", "MAX_AXES", "PROFILES", "SEGMENTERS", "Segmentation",
+    "Error", "FORMAT_VERSION", "MAX_AXES", "PROFILES", "TIMED_MOVE_TOLERANCE", "SEGMENTERS", "Segmentation",
     "compress", "decompress", "Compressor", "Decompressor", "segment", "expand",
     "interpolate", "freeman_to_steps", "steps_to_freeman", "to_moves", "from_moves",
-    "to_steps_file", "from_steps_file", "StreamingSegmenter",
+    "to_steps_file", "from_steps_file", "StreamingSegmenter", "TimedMove", "TimedChain",
+    "timed_moves",
 ]
 
 SEGMENTERS: Tuple[str, ...] = ("greedy", "optimal", "patent")
@@ -298,6 +300,49 @@ def from_moves(moves: Any) -> Steps:
         bad = int(np.argmax((arr < -1) | (arr > 1)) // arr.shape[1])
         raise _error(f"moves row {bad}: a step moves each axis by -1, 0 or +1")
     return _stepzip.moves_to_steps(arr.astype(np.int8, copy=False))
+
+
+class TimedMove(NamedTuple):
+    """A move read out of a timed log: its step totals per axis, the ticks of
+    its first and last step, its length, and its speeds along the path in
+    steps/s (entry, cruise, exit) with the ramps' acceleration in steps/s^2
+    (0 when neither ramp has 6 steps) and the leading-axis steps it was
+    fitted on, as `stepzip segment --format timed --to json` gives them
+    (docs/cli.md)."""
+    delta: Tuple[int, ...]
+    ticks: Tuple[int, int]
+    length: float
+    entry: float
+    cruise: float
+    exit: float
+    acceleration: float
+    ramp_steps: int
+
+
+class TimedChain(NamedTuple):
+    """One chain of a timed log: its path's start (per axis), its step
+    count and its moves."""
+    start: Tuple[int, ...]
+    steps: int
+    moves: List[TimedMove]
+
+
+def timed_moves(log: Any, tick_us: float, *,
+                tolerance: Optional[float] = None) -> List[TimedChain]:
+    """A controller's moves read out of a timed STEP/DIR log (any bytes-like
+    object, one byte per tick, idle ticks included; docs/formats.md
+    "timed"), ``tick_us`` microseconds a tick: per chain, moves straight
+    within ``tolerance`` steps (default TIMED_MOVE_TOLERANCE, 1.5) with
+    their entry, cruise and exit speeds and acceleration, as `stepzip segment
+    LOG --format timed --tick-us US --to json`."""
+    tick = float(tick_us)
+    if not (math.isfinite(tick) and tick > 0):
+        raise _error(f"tick_us must be a positive number of microseconds, not {tick_us!r}")
+    tol = TIMED_MOVE_TOLERANCE if tolerance is None else float(tolerance)
+    if not (math.isfinite(tol) and tol > 0):
+        raise _error(f"tolerance must be a positive number of steps, not {tolerance!r}")
+    return [TimedChain(start, steps, [TimedMove(*m) for m in moves])
+            for start, steps, moves in _stepzip.timed_moves(log, tick, tol)]
 
 
 def to_steps_file(steps: Any, axes: Optional[int] = None) -> bytes:

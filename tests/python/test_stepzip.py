@@ -298,6 +298,45 @@ class MovesTest(unittest.TestCase):
             stepzip.segment(np.ones((4, 2), np.int8), axes=3)
 
 
+class TimedMovesTest(unittest.TestCase):
+    def read(self, name):
+        with open(os.path.join(SOURCE, "corpora", "timed", name), "rb") as f:
+            return f.read()
+
+    def test_excerpt_gives_its_job_moves(self):
+        # corpora/timed/grbl-excerpt.steps: four moves of a Grbl job, 40 us ticks
+        want = [tuple(int(v) for v in line.split()) for line in self.read("grbl-excerpt.moves").decode().splitlines()]
+        chains = stepzip.timed_moves(self.read("grbl-excerpt.steps"), 40)
+        self.assertEqual(len(chains), 1)
+        chain = chains[0]
+        self.assertEqual([m.delta for m in chain.moves], want)
+        # a step event moves one axis or several: between the two counts
+        self.assertGreaterEqual(chain.steps, sum(max(abs(v) for v in m) for m in want))
+        self.assertLessEqual(chain.steps, sum(sum(abs(v) for v in m) for m in want))
+        last = -1
+        for m in chain.moves:
+            self.assertGreater(m.ticks[0], last)
+            self.assertGreaterEqual(m.ticks[1], m.ticks[0])
+            last = m.ticks[1]
+            self.assertGreater(m.cruise, 0)
+            self.assertLessEqual(m.entry, m.cruise * 1.05)
+            self.assertAlmostEqual(m.length, (m.delta[0] ** 2 + m.delta[1] ** 2) ** 0.5, places=6)
+        # the same bytes through a memoryview; a smaller tolerance cuts more moves
+        self.assertEqual(stepzip.timed_moves(memoryview(self.read("grbl-excerpt.steps")), 40), chains)
+        self.assertGreater(len(stepzip.timed_moves(self.read("trapezoid-2axis.steps"), 30, tolerance=0.3)[0].moves),
+                           len(stepzip.timed_moves(self.read("trapezoid-2axis.steps"), 30)[0].moves))
+
+    def test_bad_arguments(self):
+        data = self.read("grbl-excerpt.steps")
+        for tick in (0, -40, float("nan"), float("inf")):
+            with self.assertRaises(stepzip.Error):
+                stepzip.timed_moves(data, tick)
+        with self.assertRaises(stepzip.Error):
+            stepzip.timed_moves(data, 40, tolerance=0)
+        with self.assertRaises(TypeError):
+            stepzip.timed_moves("not bytes", 40)
+
+
 class DefaultsTest(unittest.TestCase):
     def test_profile_auto_as_the_command_line(self):
         steps = stepzip.freeman_to_steps("0000111122223333")
@@ -366,6 +405,8 @@ class GilTest(unittest.TestCase):
         steps = stepzip.freeman_to_steps(random_codes(random.Random(9), 300000))
         moves = stepzip.to_moves(steps)
         seg = stepzip.segment(steps, "eval8")
+        with open(os.path.join(SOURCE, "corpora", "timed", "trapezoid-3axis.steps"), "rb") as f:
+            log = f.read()
         for name, call in (("compress", lambda: stepzip.compress(data)),
                            ("decompress", lambda: stepzip.decompress(frame)),
                            # (three times the data: a streaming call that only buffers
@@ -375,7 +416,8 @@ class GilTest(unittest.TestCase):
                            ("segment", lambda: stepzip.segment(steps, "eval8", segmenter="optimal")),
                            ("segment auto", lambda: stepzip.segment(steps)),
                            ("expand", lambda: [stepzip.expand(seg) for _ in range(20)]),
-                           ("from_moves", lambda: [stepzip.from_moves(moves) for _ in range(20)])):
+                           ("from_moves", lambda: [stepzip.from_moves(moves) for _ in range(20)]),
+                           ("timed_moves", lambda: [stepzip.timed_moves(log, 40) for _ in range(3)])):
             with self.subTest(call=name):
                 self.assertTrue(self.runs_beside(call), name)
 
