@@ -460,6 +460,7 @@ PYBIND11_MODULE(_stepzip, m) {
             std::optional<Result<std::vector<Chain>>> chains;
             std::vector<TimedPath> paths;
             std::vector<std::vector<TimedMove>> moves;
+            std::vector<std::vector<AxisMotion>> motion;
             {
                 py::gil_scoped_release release;
                 chains = read_chains(InputFormat::timed, in.view(), "log");
@@ -467,11 +468,12 @@ PYBIND11_MODULE(_stepzip, m) {
                     for (const Chain& c : **chains) {
                         paths.push_back(timed_path(c));
                         moves.push_back(timed_moves(paths.back(), tick_us * 1e-6, tolerance));
+                        motion.push_back(estimate_axis_motion(c, tick_us * 1e-6));
                     }
             }
             if (!*chains) raise(chains->error());
             // As `stepzip segment --format timed --to json`: per chain its
-            // path's start, its step count and its moves.
+            // path's start, its step count, its axes' motion and its moves.
             py::list out;
             for (std::size_t c = 0; c < paths.size(); ++c) {
                 const Chain& path = paths[c].path;
@@ -486,7 +488,12 @@ PYBIND11_MODULE(_stepzip, m) {
                 }
                 py::tuple start(axes);
                 for (std::size_t i = 0; i < axes; ++i) start[i] = path.start[i];
-                out.append(py::make_tuple(start, path.steps.size(), ms));
+                py::list per_axis;  // axis i of the path is axis i + 1 of the log (0: time)
+                for (std::size_t i = 0; i < axes; ++i) {
+                    const AxisMotion& a = motion[c][i + 1];
+                    per_axis.append(py::make_tuple(a.steps, a.max_rate, a.acceleration, a.windows));
+                }
+                out.append(py::make_tuple(start, path.steps.size(), per_axis, ms));
             }
             return out;
         },

@@ -109,7 +109,7 @@ TEST(TimedMoves, GeneratedTrapezoidsGiveTheirSettingsBack) {
 // A move at a constant rate whose last stepper segment runs faster (8
 // ticks a step, then its last 10 steps at 7, as a controller finishes a
 // move on time): the cruise is the rate held, not the fastest window (which
-// read about 9 % more).
+// read about 9 % more), and the move has no ramps.
 TEST(TimedMoves, ConstantRateMoveReadsTheRateHeld) {
     std::vector<std::uint64_t> ticks;
     std::uint64_t at = 100;
@@ -120,6 +120,9 @@ TEST(TimedMoves, ConstantRateMoveReadsTheRateHeld) {
     const double tick = 40e-6, held = 1.0 / (8 * tick);  // steps/s (length = steps: an axis-parallel move)
     const MoveSpeeds s = move_speeds(ticks, 160.0, tick);
     EXPECT_NEAR(s.cruise, held, 0.02 * held);
+    // no ramps: the faster last segment is no acceleration of the planner
+    EXPECT_EQ(s.acceleration, 0);
+    EXPECT_EQ(s.ramp_steps, 0u);
 }
 
 // A move at one planned speed whose stepper segments alternate between

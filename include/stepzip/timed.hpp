@@ -61,7 +61,9 @@ struct MoveSpeeds {
 /// 90th percentile of the local speeds, when that plateau spans more than
 /// 4w steps, else the largest local speed (a peak); when the entry and
 /// exit speeds (below) are both 85 % of that or more, the mean speed over
-/// the whole move instead. The ramp up runs from the first step to the
+/// the whole move instead, and the move has no ramps (acceleration and
+/// ramp_steps 0: the ramps found then are stepper segments a few per cent
+/// apart). The ramp up runs from the first step to the
 /// first whose local speed reaches 97 % of the largest, the ramp down from
 /// the last such step to the end. A ramp of
 /// at least 6 steps is fitted with a parabola in time by least squares

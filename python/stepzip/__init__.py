@@ -35,7 +35,7 @@ __all__ = [
     "Error", "FORMAT_VERSION", "MAX_AXES", "PROFILES", "TIMED_MOVE_TOLERANCE", "SEGMENTERS", "Segmentation",
     "compress", "decompress", "Compressor", "Decompressor", "segment", "expand",
     "interpolate", "freeman_to_steps", "steps_to_freeman", "to_moves", "from_moves",
-    "to_steps_file", "from_steps_file", "StreamingSegmenter", "TimedMove", "TimedChain",
+    "to_steps_file", "from_steps_file", "StreamingSegmenter", "TimedAxis", "TimedMove", "TimedChain",
     "timed_moves",
 ]
 
@@ -319,11 +319,23 @@ class TimedMove(NamedTuple):
     ramp_steps: int
 
 
+class TimedAxis(NamedTuple):
+    """What one axis of a timed log says about the controller: its steps,
+    its fastest step rate (steps/s) and its ramps' acceleration (steps/s^2,
+    0 when no window of its steps fitted), read from ``windows`` windows of
+    its steps (``estimate_axis_motion`` of include/stepzip/timed.hpp)."""
+    steps: int
+    max_rate: float
+    acceleration: float
+    windows: int
+
+
 class TimedChain(NamedTuple):
     """One chain of a timed log: its path's start (per axis), its step
-    count and its moves."""
+    count, what each axis says (TimedAxis) and its moves."""
     start: Tuple[int, ...]
     steps: int
+    axes: List[TimedAxis]
     moves: List[TimedMove]
 
 
@@ -331,18 +343,19 @@ def timed_moves(log: Any, tick_us: float, *,
                 tolerance: Optional[float] = None) -> List[TimedChain]:
     """A controller's moves read out of a timed STEP/DIR log (any bytes-like
     object, one byte per tick, idle ticks included; docs/formats.md
-    "timed"), ``tick_us`` microseconds a tick: per chain, moves straight
-    within ``tolerance`` steps (default TIMED_MOVE_TOLERANCE, 1.5) with
-    their entry, cruise and exit speeds and acceleration, as `stepzip segment
-    LOG --format timed --tick-us US --to json`."""
+    "timed"), ``tick_us`` microseconds a tick: per chain, each axis's
+    fastest rate and acceleration, and the moves, straight within
+    ``tolerance`` steps (default TIMED_MOVE_TOLERANCE, 1.5), with their
+    entry, cruise and exit speeds and acceleration, as `stepzip segment LOG
+    --format timed --tick-us US --to json`."""
     tick = float(tick_us)
     if not (math.isfinite(tick) and tick > 0):
         raise _error(f"tick_us must be a positive number of microseconds, not {tick_us!r}")
     tol = TIMED_MOVE_TOLERANCE if tolerance is None else float(tolerance)
     if not (math.isfinite(tol) and tol > 0):
         raise _error(f"tolerance must be a positive number of steps, not {tolerance!r}")
-    return [TimedChain(start, steps, [TimedMove(*m) for m in moves])
-            for start, steps, moves in _stepzip.timed_moves(log, tick, tol)]
+    return [TimedChain(start, steps, [TimedAxis(*a) for a in axes], [TimedMove(*m) for m in moves])
+            for start, steps, axes, moves in _stepzip.timed_moves(log, tick, tol)]
 
 
 def to_steps_file(steps: Any, axes: Optional[int] = None) -> bytes:

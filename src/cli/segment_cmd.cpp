@@ -97,22 +97,42 @@ std::string json_number(double v) {
     return buf;
 }
 
-// JSON of the moves of timed chains: per chain its path's start and per
-// move its steps, ticks, totals, length and speeds (docs/cli.md).
+// JSON of the moves of timed chains: per chain its path's start, per axis
+// what its own steps say (estimate_axis_motion()) and per move its steps,
+// ticks, totals, length and speeds (docs/cli.md).
 std::string write_timed_json(const std::vector<TimedPath>& paths,
-                             const std::vector<std::vector<TimedMove>>& moves, double tick_us) {
-    std::string out = "{\"tick_us\":" + json_number(tick_us) + ",\"units\":\"steps, steps/s and steps/s^2 along the path\",\"chains\":[";
+                             const std::vector<std::vector<TimedMove>>& moves,
+                             const std::vector<std::vector<AxisMotion>>& motion, double tick_us) {
+    std::string out = "{\"tick_us\":" + json_number(tick_us) + ",\"units\":\"steps, steps/s and steps/s^2 (moves: along the path; axes: along the axis)\",\"chains\":[";
     for (std::size_t c = 0; c < paths.size(); ++c) {
         const Chain& path = paths[c].path;
         out += c ? ",\n{" : "\n{";
         out += "\"start\":[";
         for (int i = 0; i < path.axes; ++i) out += (i ? "," : "") + std::to_string(path.start[static_cast<std::size_t>(i)]);
-        out += "],\"steps\":" + std::to_string(path.steps.size()) + ",\"moves\":[";
+        out += "],\"steps\":" + std::to_string(path.steps.size()) + ",\"axes\":[";
+        // per axis of the path (axis a + 1 of the timed chain, 0 being time)
+        for (int i = 0; i < path.axes; ++i) {
+            const AxisMotion& a = motion[c][static_cast<std::size_t>(i) + 1];
+            out += i ? ",\n" : "\n";
+            out += "{\"steps\":";
+            out += std::to_string(a.steps);
+            out += ",\"max_rate\":";
+            out += json_number(a.max_rate);
+            out += ",\"acceleration\":";
+            out += json_number(a.acceleration);
+            out += ",\"windows\":";
+            out += std::to_string(a.windows);
+            out += "}";
+        }
+        out += "],\"moves\":[";
         for (std::size_t k = 0; k < moves[c].size(); ++k) {
             const TimedMove& m = moves[c][k];
             out += k ? ",\n" : "\n";
             out += "{\"delta\":[";
-            for (int i = 0; i < path.axes; ++i) out += (i ? "," : "") + std::to_string(m.delta[static_cast<std::size_t>(i)]);
+            for (int i = 0; i < path.axes; ++i) {
+                if (i) out += ',';
+                out += std::to_string(m.delta[static_cast<std::size_t>(i)]);
+            }
             out += "],\"ticks\":[" + std::to_string(m.first_tick) + "," + std::to_string(m.last_tick) + "]";
             out += ",\"length\":" + json_number(m.length);
             out += ",\"entry\":" + json_number(m.speeds.entry);
@@ -327,11 +347,14 @@ int cmd_segment(const std::vector<std::string>& args) {
     std::vector<TimedPath> paths;
     std::vector<std::vector<TimedMove>> moves;
     if (timed) {
+        std::vector<std::vector<AxisMotion>> motion;
         for (const Chain& c : *chains) {
             paths.push_back(timed_path(c));
             moves.push_back(timed_moves(paths.back(), tick_us * 1e-6));
+            if (*to == VectorOut::json) motion.push_back(estimate_axis_motion(c, tick_us * 1e-6));
         }
-        if (*to == VectorOut::json) return write_text(write_timed_json(paths, moves, tick_us), source, out_path, force);
+        if (*to == VectorOut::json)
+            return write_text(write_timed_json(paths, moves, motion, tick_us), source, out_path, force);
         if (paths.empty() || paths.front().path.axes != 2)
             return report(make_error(Errc::unsupported, source + ": vectors of a timed log need two axes"));
         const Drawing drawing = timed_drawing(paths, moves, timed_feed, gcode_options.step_size);

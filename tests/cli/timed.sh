@@ -40,6 +40,15 @@ cruise=$(lead_of cruise); acc=$(lead_of acceleration); entry=$(lead_of entry)
 [ "${cruise:-0}" -ge 7760 ] && [ "${cruise:-0}" -le 8240 ] || { echo "FAIL cruise $cruise not 8000 +-3%"; fail=1; }
 [ "${acc:-0}" -ge 38000 ] && [ "${acc:-0}" -le 42000 ] || { echo "FAIL acceleration $acc not 40000 +-5%"; fail=1; }
 [ "${entry:-1}" -le 240 ] || { echo "FAIL entry $entry not from rest"; fail=1; }
+# Per axis (the "axes" of the chain): the rate limit and the acceleration,
+# 8000 steps/s within 2 % and 40000 steps/s^2 within 10 %, on both axes.
+axes=$(python3 -c 'import json, sys; print(" ".join("%.0f,%.0f" % (a["max_rate"], a["acceleration"]) for a in json.load(open(sys.argv[1]))["chains"][0]["axes"]))' "$work/m.json")
+[ "$(wc -w <<<"$axes")" -eq 2 ] || { echo "FAIL segment json: axes '$axes'"; fail=1; }
+for a in $axes; do
+  rate=${a%,*} acc=${a#*,}
+  [ "$rate" -ge 7840 ] && [ "$rate" -le 8160 ] && [ "$acc" -ge 36000 ] && [ "$acc" -le 44000 ] ||
+    { echo "FAIL segment json: axis rate $rate, acceleration $acc"; fail=1; }
+done
 "$stepzip" segment --format timed --tick-us 30 --to gcode --feed timed --step-size 0.0125 "$f" -o "$work/m.nc" -f
 # F of the first move: 8000 steps/s on y, 9296 along the path, 6972 mm/min at 0.0125 mm/step.
 feed=$(sed -n 's/^G1 X32.0875 Y54.2125 F\([0-9]*\).*/\1/p' "$work/m.nc" | head -n 1)

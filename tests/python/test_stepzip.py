@@ -321,10 +321,22 @@ class TimedMovesTest(unittest.TestCase):
             self.assertGreater(m.cruise, 0)
             self.assertLessEqual(m.entry, m.cruise * 1.05)
             self.assertAlmostEqual(m.length, (m.delta[0] ** 2 + m.delta[1] ** 2) ** 0.5, places=6)
+        # the axes' steps: every step of the moves, per axis
+        self.assertEqual([a.steps for a in chain.axes], [sum(abs(m[i]) for m in want) for i in range(2)])
         # the same bytes through a memoryview; a smaller tolerance cuts more moves
         self.assertEqual(stepzip.timed_moves(memoryview(self.read("grbl-excerpt.steps")), 40), chains)
         self.assertGreater(len(stepzip.timed_moves(self.read("trapezoid-2axis.steps"), 30, tolerance=0.3)[0].moves),
                            len(stepzip.timed_moves(self.read("trapezoid-2axis.steps"), 30)[0].moves))
+
+    def test_axes_give_the_planner_settings(self):
+        # corpora/timed/trapezoid-2axis.steps: planned at 500 mm/s^2 and
+        # 6000 mm/min per axis, 80 steps/mm, 30 us ticks
+        chain = stepzip.timed_moves(self.read("trapezoid-2axis.steps"), 30)[0]
+        for axis in chain.axes:
+            self.assertGreater(axis.windows, 0)
+            # (tests/timed_motion_test.cpp: rates within 2 %, accelerations 10 %)
+            self.assertAlmostEqual(axis.acceleration / 80 / 500, 1, delta=0.10)
+            self.assertAlmostEqual(axis.max_rate / 80 * 60 / 6000, 1, delta=0.02)
 
     def test_bad_arguments(self):
         data = self.read("grbl-excerpt.steps")

@@ -195,9 +195,14 @@ MoveSpeeds move_speeds(std::span<const std::uint64_t> ticks, double length, doub
     }
     if (out.ramp_steps != 0) out.acceleration = weighted / static_cast<double>(out.ramp_steps);
     // A move that starts and ends near its cruise speed (a constant-speed
-    // move, stepper segments a few per cent apart): its mean speed.
-    if (out.entry >= kFlatShare * out.cruise && out.exit >= kFlatShare * out.cruise && t[n - 1] > t[0])
+    // move, stepper segments a few per cent apart): its mean speed, and no
+    // ramps (what reached the fastest window late was a faster segment: its
+    // parabola read a few per cent of the planner's acceleration, or less).
+    if (out.entry >= kFlatShare * out.cruise && out.exit >= kFlatShare * out.cruise && t[n - 1] > t[0]) {
         out.cruise = (s[n - 1] - s[0]) / (t[n - 1] - t[0]);
+        out.acceleration = 0;
+        out.ramp_steps = 0;
+    }
     return out;
 }
 
