@@ -360,11 +360,13 @@ void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, s
 // moving either alone costs more. Each round therefore moves every pair of
 // neighbouring corners together, each within kPairReach points, to where
 // the squared distances of the points of their three stretches from their
-// chords add up to less than where they are (by more than 1e-9; the first
-// such places, the first corner's nearer offsets first; none that lets a
-// stretch stray farther than the tolerance from its chord), until nothing
-// moves (at most kCornerRounds). kPairReach chosen on the generated logs
-// (1, 2 and 3 tried), docs/benchmarks.md "Timed streams: the moves of a log".
+// chords add up to the least, when that is less than where they are (by
+// more than 1e-9; places tried by the first corner's offset, then the
+// second's, each from -kPairReach up, a later one kept only when less by
+// more than 1e-9; none that lets a stretch stray farther than the
+// tolerance from its chord), until nothing moves (at most kCornerRounds).
+// kPairReach chosen on the generated logs (1, 2 and 3 tried),
+// docs/benchmarks.md "Timed streams: neighbouring corners moved together".
 constexpr std::ptrdiff_t kPairReach = 2;
 
 void settle_pairs(const std::vector<Point>& pts, int axes, double tolerance, std::vector<std::size_t>& v) {
