@@ -14,8 +14,8 @@
 
 #include "stepzip.h"
 #include "stepzip/container.hpp"
-#include "stepzip/profile.hpp"
 #include "stepzip/document.hpp"
+#include "stepzip/profile.hpp"
 #include "stepzip/segmenter.hpp"
 #include "stepzip/streaming.hpp"
 #include "stepzip/timed.hpp"
