@@ -235,7 +235,8 @@ int cmd_segment(const std::vector<std::string>& args) {
          "'timed' with --format timed: each move's cruise speed read out of the log")
         ("tick-us", po::value(&tick_arg),
          "--format timed: the log's tick in microseconds; vectors then draw the path "
-         "(time dropped) and JSON lists its moves with their speeds")
+         "(time dropped) and JSON lists its moves with their speeds and each axis's "
+         "rate and acceleration")
         ("feed-factor", po::value(&feed_factor_arg),
          "G-code with --feed: interval after a diagonal step, seed (x1.41, default) or exact "
          "(x sqrt 2)")
