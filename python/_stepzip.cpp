@@ -458,28 +458,22 @@ PYBIND11_MODULE(_stepzip, m) {
             // (the wrapper checked both numbers)
             const ByteView in(log, "log");
             std::optional<Result<std::vector<Chain>>> chains;
-            std::vector<TimedPath> paths;
-            std::vector<std::vector<TimedMove>> moves;
-            std::vector<std::vector<AxisMotion>> motion;
+            std::vector<TimedReading> readings;
             {
                 py::gil_scoped_release release;
                 chains = read_chains(InputFormat::timed, in.view(), "log");
                 if (*chains)
-                    for (const Chain& c : **chains) {
-                        paths.push_back(timed_path(c));
-                        moves.push_back(timed_moves(paths.back(), tick_us * 1e-6, tolerance));
-                        motion.push_back(estimate_axis_motion(c, tick_us * 1e-6));
-                    }
+                    for (const Chain& c : **chains) readings.push_back(read_timed(c, tick_us * 1e-6, tolerance));
             }
             if (!*chains) raise(chains->error());
             // As `stepzip segment --format timed --to json`: per chain its
             // path's start, its step count, its axes' motion and its moves.
             py::list out;
-            for (std::size_t c = 0; c < paths.size(); ++c) {
-                const Chain& path = paths[c].path;
+            for (const TimedReading& r : readings) {
+                const Chain& path = r.path.path;
                 const auto axes = static_cast<std::size_t>(path.axes);
                 py::list ms;
-                for (const TimedMove& m : moves[c]) {
+                for (const TimedMove& m : r.moves) {
                     py::tuple delta(axes);
                     for (std::size_t i = 0; i < axes; ++i) delta[i] = m.delta[i];
                     ms.append(py::make_tuple(delta, py::make_tuple(m.first_tick, m.last_tick), m.length,
@@ -488,11 +482,9 @@ PYBIND11_MODULE(_stepzip, m) {
                 }
                 py::tuple start(axes);
                 for (std::size_t i = 0; i < axes; ++i) start[i] = path.start[i];
-                py::list per_axis;  // axis i of the path is axis i + 1 of the log (0: time)
-                for (std::size_t i = 0; i < axes; ++i) {
-                    const AxisMotion& a = motion[c][i + 1];
+                py::list per_axis;
+                for (const AxisMotion& a : r.axes)
                     per_axis.append(py::make_tuple(a.steps, a.max_rate, a.acceleration, a.windows));
-                }
                 out.append(py::make_tuple(start, path.steps.size(), per_axis, ms));
             }
             return out;

@@ -111,4 +111,15 @@ inline constexpr double kTimedMoveTolerance = 1.5;
 std::vector<TimedMove> timed_moves(const TimedPath& path, double tick_seconds,
                                    double tolerance = kTimedMoveTolerance);
 
+/// All that a timed chain is read for, as `stepzip segment --format timed`
+/// reports it: its path, its moves (timed_moves()) and what each axis of
+/// the path says (estimate_axis_motion(), without the time axis).
+struct TimedReading {
+    TimedPath path;
+    std::vector<TimedMove> moves;
+    std::vector<AxisMotion> axes;  ///< axes[i]: axis i of the path (axis i + 1 of the timed chain)
+};
+/// Thread-safe. Complexity: as timed_moves().
+TimedReading read_timed(const Chain& timed_chain, double tick_seconds, double tolerance = kTimedMoveTolerance);
+
 }  // namespace stepzip

@@ -67,17 +67,16 @@ Result<std::vector<SegmentedChain>> cut(const std::vector<Chain>& chains, Profil
 // The drawing of a timed log's moves (two-axis paths): per chain with
 // steps one path from its start through the end of each move; with `feed`,
 // each move's F is its cruise speed (steps/min, or mm/min with a step size).
-Drawing timed_drawing(const std::vector<TimedPath>& paths, const std::vector<std::vector<TimedMove>>& moves,
-                      bool feed, const std::optional<StepSize>& step_size) {
+Drawing timed_drawing(const std::vector<TimedReading>& readings, bool feed, const std::optional<StepSize>& step_size) {
     const double per_step = step_size ? static_cast<double>(step_size->mm_e12) * 1e-12 : 1.0;
     Drawing d;
-    for (std::size_t c = 0; c < paths.size(); ++c) {
-        if (moves[c].empty()) continue;
+    for (const TimedReading& r : readings) {
+        if (r.moves.empty()) continue;
         VectorPath vp;
-        vp.x0 = paths[c].path.start[0];
-        vp.y0 = paths[c].path.start[1];
+        vp.x0 = r.path.path.start[0];
+        vp.y0 = r.path.path.start[1];
         std::int64_t x = vp.x0, y = vp.y0;
-        for (const TimedMove& m : moves[c]) {
+        for (const TimedMove& m : r.moves) {
             VectorMove mv;
             x += m.delta[0];
             y += m.delta[1];
@@ -100,19 +99,16 @@ std::string json_number(double v) {
 // JSON of the moves of timed chains: per chain its path's start, per axis
 // what its own steps say (estimate_axis_motion()) and per move its steps,
 // ticks, totals, length and speeds (docs/cli.md).
-std::string write_timed_json(const std::vector<TimedPath>& paths,
-                             const std::vector<std::vector<TimedMove>>& moves,
-                             const std::vector<std::vector<AxisMotion>>& motion, double tick_us) {
+std::string write_timed_json(const std::vector<TimedReading>& readings, double tick_us) {
     std::string out = "{\"tick_us\":" + json_number(tick_us) + ",\"units\":\"steps, steps/s and steps/s^2 (moves: along the path; axes: along the axis)\",\"chains\":[";
-    for (std::size_t c = 0; c < paths.size(); ++c) {
-        const Chain& path = paths[c].path;
+    for (std::size_t c = 0; c < readings.size(); ++c) {
+        const Chain& path = readings[c].path.path;
         out += c ? ",\n{" : "\n{";
         out += "\"start\":[";
         for (int i = 0; i < path.axes; ++i) out += (i ? "," : "") + std::to_string(path.start[static_cast<std::size_t>(i)]);
         out += "],\"steps\":" + std::to_string(path.steps.size()) + ",\"axes\":[";
-        // per axis of the path (axis a + 1 of the timed chain, 0 being time)
-        for (int i = 0; i < path.axes; ++i) {
-            const AxisMotion& a = motion[c][static_cast<std::size_t>(i) + 1];
+        for (std::size_t i = 0; i < readings[c].axes.size(); ++i) {
+            const AxisMotion& a = readings[c].axes[i];
             out += i ? ",\n" : "\n";
             out += "{\"steps\":";
             out += std::to_string(a.steps);
@@ -125,8 +121,8 @@ std::string write_timed_json(const std::vector<TimedPath>& paths,
             out += "}";
         }
         out += "],\"moves\":[";
-        for (std::size_t k = 0; k < moves[c].size(); ++k) {
-            const TimedMove& m = moves[c][k];
+        for (std::size_t k = 0; k < readings[c].moves.size(); ++k) {
+            const TimedMove& m = readings[c].moves[k];
             out += k ? ",\n" : "\n";
             out += "{\"delta\":[";
             for (int i = 0; i < path.axes; ++i) {
@@ -345,20 +341,13 @@ int cmd_segment(const std::vector<std::string>& args) {
     auto chains = read_chains(*format, *data, source);
     if (!chains) return report(chains.error());
     // A timed log: its moves are read out; the rest works on its path.
-    std::vector<TimedPath> paths;
-    std::vector<std::vector<TimedMove>> moves;
     if (timed) {
-        std::vector<std::vector<AxisMotion>> motion;
-        for (const Chain& c : *chains) {
-            paths.push_back(timed_path(c));
-            moves.push_back(timed_moves(paths.back(), tick_us * 1e-6));
-            if (*to == VectorOut::json) motion.push_back(estimate_axis_motion(c, tick_us * 1e-6));
-        }
-        if (*to == VectorOut::json)
-            return write_text(write_timed_json(paths, moves, motion, tick_us), source, out_path, force);
-        if (paths.empty() || paths.front().path.axes != 2)
+        std::vector<TimedReading> readings;
+        for (const Chain& c : *chains) readings.push_back(read_timed(c, tick_us * 1e-6));
+        if (*to == VectorOut::json) return write_text(write_timed_json(readings, tick_us), source, out_path, force);
+        if (readings.empty() || readings.front().path.path.axes != 2)
             return report(make_error(Errc::unsupported, source + ": vectors of a timed log need two axes"));
-        const Drawing drawing = timed_drawing(paths, moves, timed_feed, gcode_options.step_size);
+        const Drawing drawing = timed_drawing(readings, timed_feed, gcode_options.step_size);
         const std::string comment = "moves read out of a timed log (" + json_number(tick_us) +
                                     " us ticks): straight within " + json_number(kTimedMoveTolerance) +
                                     " steps of its path" +

@@ -370,13 +370,17 @@ void settle_corners(const std::vector<Point>& pts, int axes, double tolerance, s
 constexpr std::ptrdiff_t kPairReach = 2;
 
 void settle_pairs(const std::vector<Point>& pts, int axes, double tolerance, std::vector<std::size_t>& v) {
-    auto straight = [&](std::size_t a, std::size_t b) { return deviation(pts, axes, a, b).worst <= tolerance * tolerance; };
-    auto cost = [&](std::size_t a, std::size_t p, std::size_t q, std::size_t c, double limit, bool& cut) {
+    // The three stretches' sum (stopped at `limit`, then `cut`) and, when
+    // not cut, the largest squared distance of their points.
+    struct Cost {
+        double sum = 0, worst = -1;
+        bool cut = false;
+    };
+    auto cost = [&](std::size_t a, std::size_t p, std::size_t q, std::size_t c, double limit) {
         const Deviation x = deviation(pts, axes, a, p, 0, limit);
         const Deviation y = x.cut ? x : deviation(pts, axes, p, q, x.sum, limit);
         const Deviation z = y.cut ? y : deviation(pts, axes, q, c, x.sum + y.sum, limit);
-        cut = z.cut;
-        return x.sum + y.sum + z.sum;
+        return Cost{x.sum + y.sum + z.sum, std::max({x.worst, y.worst, z.worst}), z.cut};
     };
     // (a, p, q, c) of the searches that left both corners in place
     std::set<std::array<std::size_t, 4>> settled;
@@ -386,8 +390,7 @@ void settle_pairs(const std::vector<Point>& pts, int axes, double tolerance, std
             const std::array<std::size_t, 4> key{v[i - 1], v[i], v[i + 1], v[i + 2]};
             if (settled.contains(key)) continue;
             const auto [a, p, q, c] = key;
-            bool cut = false;
-            double limit = cost(a, p, q, c, std::numeric_limits<double>::infinity(), cut) - 1e-9;
+            double limit = cost(a, p, q, c, std::numeric_limits<double>::infinity()).sum - 1e-9;
             std::size_t bp = p, bq = q;
             for (std::ptrdiff_t dp = -kPairReach; dp <= kPairReach; ++dp)
                 for (std::ptrdiff_t dq = -kPairReach; dq <= kPairReach; ++dq) {
@@ -395,11 +398,9 @@ void settle_pairs(const std::vector<Point>& pts, int axes, double tolerance, std
                     if ((dp == 0 && dq == 0) || np <= static_cast<std::ptrdiff_t>(a) || nq <= np ||
                         nq >= static_cast<std::ptrdiff_t>(c))
                         continue;
-                    const double x = cost(a, static_cast<std::size_t>(np), static_cast<std::size_t>(nq), c, limit, cut);
-                    if (!cut && x < limit && straight(a, static_cast<std::size_t>(np)) &&
-                        straight(static_cast<std::size_t>(np), static_cast<std::size_t>(nq)) &&
-                        straight(static_cast<std::size_t>(nq), c)) {
-                        limit = x - 1e-9;
+                    const Cost x = cost(a, static_cast<std::size_t>(np), static_cast<std::size_t>(nq), c, limit);
+                    if (!x.cut && x.sum < limit && x.worst <= tolerance * tolerance) {
+                        limit = x.sum - 1e-9;
                         bp = static_cast<std::size_t>(np);
                         bq = static_cast<std::size_t>(nq);
                     }
@@ -450,6 +451,15 @@ std::vector<TimedMove> timed_moves(const TimedPath& tp, double tick_seconds, dou
         out.push_back(m);
     }
     return out;
+}
+
+TimedReading read_timed(const Chain& timed_chain, double tick_seconds, double tolerance) {
+    TimedReading r;
+    r.path = timed_path(timed_chain);
+    r.moves = timed_moves(r.path, tick_seconds, tolerance);
+    std::vector<AxisMotion> all = estimate_axis_motion(timed_chain, tick_seconds);
+    r.axes.assign(all.begin() + (all.empty() ? 0 : 1), all.end());
+    return r;
 }
 
 }  // namespace stepzip
