@@ -111,8 +111,12 @@ if [ -f "$shared/grbl_hershey.steps.xz" ]; then
   xz -dc "$shared/grbl_hershey.steps.xz" > "$tmp/grbl.steps"
   head -c 89761 "$tmp/grbl.steps" | tail -c 5098 > "$out/timed/grbl-excerpt.steps"
   printf '24 -72\n47 -47\n48 -24\n71 0\n' > "$out/timed/grbl-excerpt.moves"
+  # the stream's first 74 568 ticks (the job's first 15 moves) and the
+  # job's settings and first 30 moves (the 15 and the look-ahead after them)
+  head -c 74568 "$tmp/grbl.steps" > "$out/timed/grbl-start.steps"
+  xz -dc "$shared/grbl_hershey.nc.xz" | head -n 43 > "$out/timed/grbl-start.nc"
 else
-  echo "regenerate.sh: $shared not found: corpora/timed/grbl-excerpt.* left as they are" >&2
+  echo "regenerate.sh: $shared not found: corpora/timed/grbl-excerpt.* and grbl-start.* left as they are" >&2
 fi
 
 # The worst case: random walks.

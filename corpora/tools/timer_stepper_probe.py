@@ -32,7 +32,7 @@ compared tick for tick, and the cost of coding the segments is estimated:
 per segment the step count n as one bit among the 10 ms rule's candidates,
 the period as a signed Elias-gamma residual against a prediction carrying
 the move's rate change from its previous two segments (0 when the predicted
-period is one of the periods that fit), a move's first segment 18 bits; per
+period is one of the periods that fit), a move's first segment 19 bits; per
 move the step counts as signed Elias-gamma codes.
 
 With --restart the moves are those `stepzip segment --format timed --to
@@ -43,9 +43,17 @@ and how many of the log's steps they hold (a coder that finds the moves in
 the log would fit these; docs/benchmarks.md "Timed streams: the moves of a
 log").
 
+With --planner (JOB the G-code) the probe also runs Grbl 1.1's planner and
+segment generator over the job (planner.c; stepper.c st_prep_buffer), in
+single precision with a PC build's double intermediates (--planner-avr: the
+AVR's, all single), and reports the predicted period of every fitted
+segment against its fitted range, the cost with each period coded against
+the prediction, and the log regenerated from the prediction alone.
+
 Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [--steps-mm 100]
          [--cycles-per-tick 640] [--thresholds 2000,4000,8000]
          [--segment-cycles 160000] [--segments OUT.json]
+         [--planner [--planner-avr] [--planner-blocks 16]]
        timer_stepper_probe.py LOG MOVES.json --restart [...]
 """
 import argparse
@@ -89,16 +97,7 @@ def read_moves(path, steps_mm):
         if isinstance(doc, dict):  # stepzip segment --to json
             return [tuple(m['delta']) for m in doc['chains'][0]['moves']]
         return [tuple(b['steps']) for b in doc]
-    pos = [0, 0]; moves = []
-    for line in text.split('\n'):
-        if not line.startswith(('G0 ', 'G1 ')): continue
-        tgt = list(pos)
-        for w in line.split()[1:]:
-            tgt['XY'.index(w[0])] = lround(f32(read_float(w[1:]) * f32(float(steps_mm))))
-        dd = (tgt[0] - pos[0], tgt[1] - pos[1])
-        if any(dd): moves.append(dd)
-        pos = tgt
-    return moves
+    return read_job(path, steps_mm, Arith(False))[0]
 
 
 def read_log(path, axes):
@@ -334,13 +333,19 @@ def gamma(v):
     return 2 * int(math.log2(2 * abs(v) + (1 if v < 0 else 0) + 1)) + 1
 
 
-def cost(segs, conc, moves):
+def cost(segs, conc, moves, pred=None):
     """Estimated bits: segments (step count, period) by their place in the
-    move (first, second, later), moves (step counts)."""
+    move (first, second, later), moves (step counts). With pred (--planner:
+    the planner's cycles per step for every segment) every period, a move's
+    first too, is coded against the prediction, and a move pays a bit for
+    G0/G1."""
     seg_bits = [0, 0, 0]; hist = []; misses = []
-    for (L, N, b, p), (c, P) in zip(segs, conc):
+    for j, ((L, N, b, p), (c, P)) in enumerate(zip(segs, conc)):
         same = [r for bb, r in hist[-2:] if bb == b] if hist and hist[-1][0] == b else []
-        if not same:
+        if pred is not None:
+            r = planner_miss(pred[j], L, p)
+            seg_bits[min(len(same), 2)] += 1 + gamma(r); misses.append(abs(r))
+        elif not same:
             seg_bits[0] += 19
         else:
             rate = 2 * same[-1] - same[0] if len(same) == 2 else same[-1]
@@ -348,9 +353,431 @@ def cost(segs, conc, moves):
             r = 0 if p.plo <= q <= p.phi else (q - p.phi if q > p.phi else q - p.plo)
             seg_bits[min(len(same), 2)] += 1 + gamma(r); misses.append(abs(r))
         hist.append((b, 1.0 / (P << L)))
-    move_bits = sum(gamma(v) for m in moves for v in m)
+    move_bits = sum(gamma(v) for m in moves for v in m) + (len(moves) if pred is not None else 0)
     misses.sort()
     return seg_bits, move_bits, misses
+
+
+# --planner: Grbl 1.1's look-ahead planner (planner.c) and segment generator
+# (stepper.c st_prep_buffer), re-implemented to predict every segment's step
+# count and cycles per step from the job alone.
+
+BLOCK_BUFFER_SIZE = 16   # planner ring: holds 15 blocks
+SEGMENT_BUFFER_SIZE = 6  # segment ring: holds 5 segments
+RAMP_ACCEL, RAMP_CRUISE, RAMP_DECEL, RAMP_DECEL_OVERRIDE = range(4)
+
+
+class Arith:
+    """How the build evaluates a C expression with a double constant (0.5*x,
+    2.0*x, 1.0-x, DT_SEGMENT): in double on a PC build such as grbl-sim, in
+    single on the AVR, where double is float. Float variables are single
+    either way (f32 on every store); d() rounds a 'double' intermediate."""
+    def __init__(s, avr):
+        s.avr = avr
+        s.d = f32 if avr else (lambda x: x)
+
+    def read_float(s, text):
+        if not s.avr: return read_float(text)
+        neg = text.startswith('-'); text = text.lstrip('+-')  # the constants 0.01, 0.1 in single
+        whole, _, frac = text.partition('.')
+        v = f32(float(int(whole + frac))); e = -len(frac)
+        if v != 0:
+            while e <= -2: v = f32(v * f32(0.01)); e += 2
+            if e < 0: v = f32(v * f32(0.1))
+        return -v if neg else v
+
+
+def read_job(path, steps_mm, ar):
+    """A 2-axis G-code job (G0/G1 X.. Y.., absolute mm): the moves' signed
+    step counts (the targets rounded to steps in single precision, as Grbl
+    does), per move whether it is G0 and its feed (mm/min), and the X, Y
+    settings of the job's $ lines (Grbl's DEFAULTS_GENERIC otherwise)."""
+    st = {'100': '250', '101': '250', '110': '500', '111': '500', '120': '10', '121': '10', '11': '0.010'}
+    pos = [0, 0]; feed = 0.0; rapid = True; moves = []; flags = []
+    for line in open(path).read().split('\n'):
+        if line.startswith('$') and '=' in line:
+            k, v = line[1:].split('=', 1); st[k] = v; continue
+        tgt = list(pos); motion = False
+        for w in line.split():
+            if w in ('G0', 'G1'): rapid = w == 'G0'; motion = True
+            elif w[0] == 'F': feed = ar.read_float(w[1:])
+            elif w[0] in 'XY':
+                tgt['XY'.index(w[0])] = lround(f32(read_float(w[1:]) * f32(float(steps_mm))))
+                motion = True
+        dd = (tgt[0] - pos[0], tgt[1] - pos[1])
+        if motion and any(dd): moves.append(dd); flags.append((rapid, feed))
+        pos = tgt
+    v = lambda k: ar.read_float(st[k])
+    settings = dict(steps_mm=[v('100'), v('101')], max_rate=[v('110'), v('111')],
+                    accel=[f32(f32(v(k) * 60) * 60) for k in ('120', '121')],  # mm/min²
+                    jdev=v('11'))
+    return moves, flags, settings
+
+
+class Block:
+    """A planner block. The segment generator shrinks mm as it goes."""
+    pass
+
+
+class Planner:
+    """The ring of blocks with plan_buffer_line and planner_recalculate."""
+    def __init__(s, ar, settings, size=BLOCK_BUFFER_SIZE):
+        s.ar, s.size = ar, size
+        s.spm, s.max_rate, s.accel, s.jdev = (settings[k] for k in ('steps_mm', 'max_rate', 'accel', 'jdev'))
+        s.buf = [None] * size; s.tail = s.head = s.planned = 0
+        s.prev_unit = None; s.prev_nominal = 0.0
+        s.on_tail = lambda: None  # st_update_plan_block_parameters
+
+    def nxt(s, i): return 0 if i + 1 == s.size else i + 1
+    def prv(s, i): return (i or s.size) - 1
+    def full(s): return s.tail == s.nxt(s.head)
+    def current(s): return None if s.head == s.tail else s.buf[s.tail]
+
+    def exit_speed_sqr(s):
+        """The entry speed² of the block after the executing one (0 if none)."""
+        i = s.nxt(s.tail)
+        return 0.0 if i == s.head else s.buf[i].entry_sqr
+
+    def discard(s):
+        if s.head != s.tail:
+            i = s.nxt(s.tail)
+            if s.tail == s.planned: s.planned = i
+            s.tail = i
+
+    def unit_vector(s, v):
+        """Normalises v in place, returns its length."""
+        m = 0.0
+        for x in v:
+            if x != 0: m = f32(m + f32(x * x))
+        m = f32(math.sqrt(m)); inv = f32(s.ar.d(1.0 / m))
+        v[:] = [f32(x * inv) for x in v]
+        return m
+
+    @staticmethod
+    def limit(maxv, unit):
+        """The largest value along unit that keeps every axis within maxv."""
+        lim = f32(1e38)
+        for m, u in zip(maxv, unit):
+            if u != 0: lim = min(lim, abs(f32(m / u)))
+        return lim
+
+    def nominal(s, b):
+        """plan_compute_profile_nominal_speed, overrides at 100 %."""
+        d = s.ar.d
+        if b.rapid: v = f32(d(b.rapid_rate * d(0.01 * 100)))
+        else:
+            v = f32(d(b.feed * d(0.01 * 100)))
+            if v > b.rapid_rate: v = b.rapid_rate
+        return v if v > 1.0 else 1.0  # MINIMUM_FEED_RATE
+
+    def add(s, k, delta, rapid, feed):
+        """plan_buffer_line of move k (signed steps)."""
+        d = s.ar.d; b = Block(); b.k = k
+        b.events = max(abs(v) for v in delta)
+        unit = [f32(v / m) for v, m in zip(delta, s.spm)]  # mm from the steps
+        b.mm = s.unit_vector(unit)
+        b.accel = s.limit(s.accel, unit); b.rapid_rate = s.limit(s.max_rate, unit)
+        b.rapid, b.feed = rapid, feed
+        if s.head == s.tail:  # empty buffer: from rest
+            b.entry_sqr = 0.0; max_junction = 0.0
+        else:  # junction deviation: the centripetal speed of the corner
+            cos = 0.0
+            for p, u in zip(s.prev_unit, unit): cos = f32(cos - f32(p * u))
+            if cos > d(0.999999): max_junction = 0.0  # reversal: MINIMUM_JUNCTION_SPEED
+            elif cos < d(-0.999999): max_junction = f32(1e38)  # straight on
+            else:
+                ju = [f32(u - p) for p, u in zip(s.prev_unit, unit)]
+                s.unit_vector(ju)
+                ja = s.limit(s.accel, ju)
+                sin_d2 = f32(d(math.sqrt(d(0.5 * d(1.0 - cos)))))
+                max_junction = f32(max(0.0, d(f32(f32(ja * s.jdev) * sin_d2) / d(1.0 - sin_d2))))
+        nom = s.nominal(b)
+        slower = s.prev_nominal if nom > s.prev_nominal else nom
+        b.max_entry_sqr = min(f32(slower * slower), max_junction)
+        s.prev_nominal = nom; s.prev_unit = unit
+        s.buf[s.head] = b; s.head = s.nxt(s.head)
+        s.recalculate()
+
+    def recalculate(s):
+        """planner_recalculate: a reverse pass from the newest block (exit 0)
+        down to the planned pointer, then a forward pass that moves it on."""
+        i = s.prv(s.head)
+        if i == s.planned: return
+        cur = s.buf[i]
+        cur.entry_sqr = min(cur.max_entry_sqr, f32(f32(2 * cur.accel) * cur.mm))
+        i = s.prv(i)
+        if i == s.planned:
+            if i == s.tail: s.on_tail()
+        else:
+            while i != s.planned:
+                nx = cur; cur = s.buf[i]; i = s.prv(i)
+                if i == s.tail: s.on_tail()
+                if cur.entry_sqr != cur.max_entry_sqr:
+                    e = f32(nx.entry_sqr + f32(f32(2 * cur.accel) * cur.mm))
+                    cur.entry_sqr = e if e < cur.max_entry_sqr else cur.max_entry_sqr
+        nx = s.buf[s.planned]; i = s.nxt(s.planned)
+        while i != s.head:
+            cur = nx; nx = s.buf[i]
+            if cur.entry_sqr < nx.entry_sqr:
+                e = f32(cur.entry_sqr + f32(f32(2 * cur.accel) * cur.mm))
+                if e < nx.entry_sqr: nx.entry_sqr = e; s.planned = i
+            if nx.entry_sqr == nx.max_entry_sqr: s.planned = i
+            i = s.nxt(i)
+
+
+class SegmentGenerator:
+    """st_prep_buffer, one segment a call: (move, steps, cycles per step)."""
+    def __init__(s, ar, planner, ticks_per_s=100, f_cpu=16000000):
+        s.ar, s.pl = ar, planner
+        s.dt_expr = ar.d(1.0 / ar.d(ticks_per_s * 60.0))  # DT_SEGMENT (min)
+        s.dt_segment = f32(s.dt_expr)
+        s.cycles_per_min = f32(float(f_cpu * 60))         # TICKS_PER_MICROSECOND*1000000*60
+        s.block = None; s.recalc = False; s.replans = 0
+        s.cur = s.exit = s.vmax = s.acc_until = s.dec_after = 0.0
+        s.steps_rem = s.dt_rem = s.step_per_mm = s.req_mm = 0.0
+        planner.on_tail = s.replanned
+
+    def replanned(s):
+        """st_update_plan_block_parameters: the planner changed the block being
+        cut; its rest is re-profiled from the current speed."""
+        if s.block is not None:
+            s.recalc = True; s.replans += 1
+            s.block.entry_sqr = f32(s.cur * s.cur)
+            s.block = None
+
+    def profile(s, b):
+        """The block's ramps, as distances from its end: accelerate until
+        acc_until, cruise at vmax, decelerate after dec_after to the next
+        block's entry speed."""
+        d = s.ar.d
+        inv_2a = f32(d(0.5 / b.accel))
+        s.ramp = RAMP_ACCEL; s.acc_until = b.mm
+        exit_sqr = s.pl.exit_speed_sqr(); s.exit = f32(math.sqrt(exit_sqr))
+        nom = s.pl.nominal(b); nom_sqr = f32(nom * nom)
+        inter = f32(d(0.5 * f32(b.mm + f32(inv_2a * f32(b.entry_sqr - exit_sqr)))))
+        if b.entry_sqr > nom_sqr:  # only after a re-plan that lowered the speed
+            s.acc_until = f32(b.mm - f32(inv_2a * f32(b.entry_sqr - nom_sqr)))
+            if s.acc_until <= 0:
+                raise NotImplementedError('deceleration-only override')
+            s.dec_after = f32(inv_2a * f32(nom_sqr - exit_sqr))
+            s.vmax = nom; s.ramp = RAMP_DECEL_OVERRIDE
+        elif inter > 0:
+            if inter < b.mm:  # trapezoid or triangle
+                s.dec_after = f32(inv_2a * f32(nom_sqr - exit_sqr))
+                if s.dec_after < inter:
+                    s.vmax = nom
+                    if b.entry_sqr == nom_sqr: s.ramp = RAMP_CRUISE
+                    else: s.acc_until = f32(s.acc_until - f32(inv_2a * f32(nom_sqr - b.entry_sqr)))
+                else:
+                    s.acc_until = s.dec_after = inter
+                    s.vmax = f32(d(math.sqrt(d(d(d(2.0 * b.accel) * inter) + exit_sqr))))
+            else:
+                s.ramp = RAMP_DECEL
+        else:  # acceleration only
+            s.acc_until = 0.0; s.vmax = s.exit
+
+    def segment(s):
+        d = s.ar.d
+        if s.block is None:
+            b = s.pl.current()
+            if b is None: return None
+            s.block = b
+            if s.recalc: s.recalc = False  # keep the block's step data
+            else:
+                s.steps_rem = float(b.events)
+                s.step_per_mm = f32(s.steps_rem / b.mm)
+                s.req_mm = f32(d(1.25 / s.step_per_mm))  # REQ_MM_INCREMENT_SCALAR steps
+                s.dt_rem = 0.0
+                s.cur = f32(math.sqrt(b.entry_sqr))
+            s.profile(b)
+        b = s.block
+        # the distance of one DT_SEGMENT through the ramps (more while under 1.25 steps)
+        dt_max = s.dt_segment; dt = 0.0; tv = dt_max
+        mm = b.mm; min_mm = max(0.0, f32(mm - s.req_mm))
+        while True:
+            if s.ramp == RAMP_DECEL_OVERRIDE:
+                sv = f32(b.accel * tv)
+                if f32(s.cur - s.vmax) <= sv:
+                    mm = s.acc_until
+                    tv = f32(d(d(2.0 * f32(b.mm - mm)) / f32(s.cur + s.vmax)))
+                    s.ramp = RAMP_CRUISE; s.cur = s.vmax
+                else:
+                    mm = f32(d(mm - d(tv * d(s.cur - d(0.5 * sv)))))
+                    s.cur = f32(s.cur - sv)
+            elif s.ramp == RAMP_ACCEL:
+                sv = f32(b.accel * tv)
+                mm = f32(d(mm - d(tv * d(s.cur + d(0.5 * sv)))))
+                if mm < s.acc_until:  # end of the acceleration
+                    mm = s.acc_until
+                    tv = f32(d(d(2.0 * f32(b.mm - mm)) / f32(s.cur + s.vmax)))
+                    s.ramp = RAMP_DECEL if mm == s.dec_after else RAMP_CRUISE
+                    s.cur = s.vmax
+                else:
+                    s.cur = f32(s.cur + sv)
+            elif s.ramp == RAMP_CRUISE:
+                mv = f32(mm - f32(s.vmax * tv))
+                if mv < s.dec_after:  # end of the cruise
+                    tv = f32(f32(mm - s.dec_after) / s.vmax)
+                    mm = s.dec_after; s.ramp = RAMP_DECEL
+                else:
+                    mm = mv
+            else:
+                sv = f32(b.accel * tv); done = False
+                if s.cur > sv:
+                    mv = f32(d(mm - d(tv * d(s.cur - d(0.5 * sv)))))
+                    if mv > 0: mm = mv; s.cur = f32(s.cur - sv); done = True
+                if not done:  # end of the block
+                    tv = f32(d(d(2.0 * mm) / f32(s.cur + s.exit)))
+                    mm = 0.0; s.cur = s.exit
+            dt = f32(dt + tv)
+            if dt < dt_max: tv = f32(dt_max - dt)  # a ramp ended inside the segment
+            elif mm > min_mm:
+                dt_max = f32(d(dt_max + s.dt_expr)); tv = f32(dt_max - dt)
+            else: break
+            if not mm > 0: break
+        # whole steps: the remaining distance in steps rounded up; the partial
+        # step's time goes to the next segment (dt_remainder)
+        dist = f32(s.step_per_mm * mm)
+        n_rem = float(math.ceil(dist)); last = float(math.ceil(s.steps_rem))
+        dt = f32(dt + s.dt_rem)
+        inv_rate = f32(dt / f32(last - dist))
+        cycles = math.ceil(f32(s.cycles_per_min * inv_rate))
+        b.mm = mm; s.steps_rem = n_rem
+        s.dt_rem = f32(f32(n_rem - dist) * inv_rate)
+        if mm == 0:
+            s.block = None; s.pl.discard()
+        return b.k, int(last - n_rem), cycles
+
+
+def simulate_grbl(moves, flags, settings, ar, blocks=BLOCK_BUFFER_SIZE):
+    """Every segment Grbl cuts from the job, (move, steps, cycles per step),
+    and how many times the block being cut was re-planned. The foreground is
+    infinitely fast: the cycle starts with the planner full, the interrupt
+    frees one segment slot at a time, the generator refills it at once, and
+    the parser hands the planner a move whenever a block is freed."""
+    pl = Planner(ar, settings, blocks)
+    gen = SegmentGenerator(ar, pl)
+    out = []; k = 0; queued = 0
+
+    def fill():
+        nonlocal queued
+        while queued < SEGMENT_BUFFER_SIZE - 1:
+            seg = gen.segment()
+            if seg is None: return
+            out.append(seg); queued += 1
+
+    def top_up():
+        nonlocal k
+        while k < len(moves) and not pl.full():
+            pl.add(k, moves[k], *flags[k]); k += 1
+
+    top_up(); fill(); top_up()
+    while queued:
+        queued -= 1  # the interrupt finishes a segment
+        fill(); top_up()
+    return out, gen.replans
+
+
+def amass(model, cycles):
+    """The AMASS level and the timer period (compare value + 1) of a rate."""
+    L = sum(1 for x in model.thr if cycles >= x)
+    return L, min(cycles >> L, PMAX - 1) + 1
+
+
+def planner_miss(cycles, L, p):
+    """The predicted period at level L against a fitted range: 0 inside."""
+    q = min(cycles >> L, PMAX - 1) + 1
+    return 0 if p.plo <= q <= p.phi else (q - p.phi if q > p.phi else q - p.plo)
+
+
+def cover(segs, pred):
+    """For every fitted segment the predicted segment that holds its first
+    step, and whether the two are the same steps of the move."""
+    starts = {}; pos = {}
+    for j, (b, n, _) in enumerate(pred):
+        starts.setdefault(b, []).append((pos.get(b, 0), j)); pos[b] = pos.get(b, 0) + n
+    out = []; pos = {}
+    for L, N, b, _ in segs:
+        s0 = pos.get(b, 0); pos[b] = s0 + (N >> L)
+        i = bisect.bisect_right(starts[b], (s0, 1 << 62)) - 1
+        p0, j = starts[b][i]
+        out.append((j, p0 == s0 and pred[j][1] == N >> L))
+    return out
+
+
+def planner_start(model, moves, pred, evt, evm):
+    """Runs the predicted segments from cycle 0 against the log's step ticks:
+    the start cycles that put every step event into its tick. Returns
+    (start cycle, events in their ticks); on a mismatch a start that fits
+    the events before it."""
+    lo, hi = -(1 << 62), 1 << 62; k = 0; c = 0; prev = -1; NA = len(moves[0])
+    for b, n, cycles in pred:
+        L, P = amass(model, cycles)
+        S = [abs(v) for v in moves[b]]; thr = max(S) << LMAX
+        if b != prev: cnt = [thr >> 1] * NA; prev = b
+        inc = [v << (LMAX - L) for v in S]
+        for i in range(1, (n << L) + 1):
+            mask = 0
+            for a in range(NA):
+                cnt[a] += inc[a]
+                if cnt[a] > thr: cnt[a] -= thr; mask |= 1 << a
+            if not mask: continue
+            if k >= len(evt) or evm[k] != mask: return (lo + hi) // 2, k
+            t0 = model.ct * evt[k] - (c + i * P)
+            if max(lo, t0) > min(hi, t0 + model.ct - 1): return (lo + hi) // 2, k
+            lo, hi = max(lo, t0), min(hi, t0 + model.ct - 1); k += 1
+        c += (n << L) * P
+    return (lo + hi) // 2, k
+
+
+def planner_log(model, moves, pred, c0, size):
+    """The log (size ticks) that the predicted segments write when the
+    first interrupt is at cycle c0."""
+    ss = []; cc = []; c = c0
+    for b, n, cycles in pred:
+        L, P = amass(model, cycles)
+        ss.append((L, n << L, b, None)); cc.append((c, P)); c += (n << L) * P
+    return regenerate(model, moves, ss, cc, size)
+
+
+def planner_probe(a, model, moves, segs, conc, d, evt, evm):
+    """--planner: the planner's prediction against the fitted segments, the
+    cost of coding the periods against it, and the log regenerated from the
+    prediction alone."""
+    ar = Arith(a.planner_avr)
+    if a.job.endswith('.json'): raise SystemExit('--planner: JOB must be the G-code job')
+    _, flags, settings = read_job(a.job, a.steps_mm, ar)
+    pred, replans = simulate_grbl(moves, flags, settings, ar, a.planner_blocks)
+    at = cover(segs, pred)
+    print('planner: Grbl segments', len(pred), '(blocks re-planned while cut: %d);' % replans,
+          'fitted segments that are one of them', sum(s for _, s in at), 'of', len(segs))
+    rows = {name: [0, 0, 0] for name in ('segments', 'in range', 'within 1', 'P exact', 'P within 1', 'level agrees')}
+    res = [[], [], []]; prev = None; place = 0
+    for ((L, N, b, p), (c, P)), (j, _) in zip(zip(segs, conc), at):
+        place = 0 if b != prev else min(place + 1, 2); prev = b
+        cycles = pred[j][2]; r = planner_miss(cycles, L, p); q = min(cycles >> L, PMAX - 1) + 1
+        for name, ok in (('segments', True), ('in range', r == 0), ('within 1', abs(r) <= 1), ('P exact', q == P),
+                         ('P within 1', abs(q - P) <= 1), ('level agrees', amass(model, cycles)[0] == L)):
+            rows[name][place] += ok
+        res[place].append(abs(r))
+    print('  fitted segments (first, second, later of a move)')
+    for name, v in rows.items(): print('  %-13s' % name, *v)
+    for place, name in enumerate(('first', 'second', 'later')):
+        m = sorted(res[place])
+        if m: print('  miss (cycles outside the fitted range), %s: median %d p90 %d max %d'
+                    % (name, m[len(m) // 2], m[len(m) * 9 // 10], m[-1]))
+    parts, mb, misses = cost(segs, conc, moves, [pred[j][2] for j, _ in at])
+    sb = sum(parts)
+    print('planner estimated bits: segments', sb, '(%.2f a segment; first, second, later segments of a move:' % (sb / len(segs)),
+          *parts, end='); ')
+    print('moves with G0/G1', mb, 'total bytes', (sb + mb + 7) // 8)
+    # the log from the prediction alone: one start cycle, no fitted data
+    c0, k = planner_start(model, moves, pred, evt, evm)
+    out = planner_log(model, moves, pred, c0, len(d))
+    bad = sum(1 for t in range(len(d)) if d[t] != out[t])
+    mb = sum(gamma(v) for m in moves for v in m) + len(moves)
+    print('planner alone: start cycle', c0, 'puts', k, 'of', len(evt), 'step events in their ticks; ticks regenerated differently',
+          bad, 'of', len(d), '; estimated bits: moves with G0/G1', mb, 'start', gamma(c0), 'total bytes', (mb + gamma(c0) + 7) // 8)
 
 
 def fit_restarting(model, moves, doc, evt, evm, dirch):
@@ -383,6 +810,12 @@ def main():
     ap.add_argument('--segments', help='write the fitted segments (level, interrupts, move, c, P) as JSON')
     ap.add_argument('--restart', action='store_true',
                     help="JOB is stepzip segment's JSON; pass over moves that do not fit")
+    ap.add_argument('--planner', action='store_true',
+                    help="predict every segment with Grbl 1.1's planner and segment generator (JOB: the G-code)")
+    ap.add_argument('--planner-avr', action='store_true',
+                    help="with --planner: AVR arithmetic (double is float) instead of a PC build's")
+    ap.add_argument('--planner-blocks', type=int, default=BLOCK_BUFFER_SIZE,
+                    help='with --planner: planner ring size (it holds one block less)')
     a = ap.parse_args()
     model = Model(a.cycles_per_tick, [int(v) for v in a.thresholds.split(',')], a.segment_cycles)
     moves = read_moves(a.job, a.steps_mm)
@@ -408,6 +841,8 @@ def main():
     if misses:
         print('period residuals (timer cycles): median', misses[len(misses) // 2],
               'p90', misses[len(misses) * 9 // 10], 'zero', sum(1 for m in misses if m == 0))
+    if a.planner:
+        planner_probe(a, model, moves, segs, conc, d, evt, evm)
     if a.segments:
         json.dump([[L, N, b, c, P] for (L, N, b, _), (c, P) in zip(segs, conc)], open(a.segments, 'w'))
     return 0 if not bad else 2
