@@ -58,10 +58,14 @@ Usage: timer_stepper_probe.py LOG JOB.nc|REPORT.json [--steps-mm 100]
 """
 import argparse
 import bisect
+import copy
 import json
 import math
+import os
 import struct
+import subprocess
 import sys
+import time
 
 LMAX = 3
 PMAX = 65536  # the 16-bit compare value + 1
@@ -800,9 +804,406 @@ def fit_restarting(model, moves, doc, evt, evm, dirch):
     return 0
 
 
+# --recover: the job (settings, moves, G0/G1 and feed per move, start cycle)
+# out of the log alone, judged by regenerating the log with the model above.
+
+STEPS_MM = (100, 80, 250, 1)      # one per float class: x 2^k regenerates alike
+JDEV = ('0.010', '0.005', '0.020', '0.001', '0.002', '0.050', '0.100', '0.015', '0.008', '0.003', '0.030')
+
+
+def round_near(x, rel=0.04, most=9):
+    """Decimals a user would type near x, nearest first: 1 or 2 significant
+    digits, or 3 ending in 0 or 5."""
+    out = set()
+    e = 10 ** math.floor(math.log10(x))
+    for step in (e, e / 2, e / 10, e / 20):
+        for q in range(int(x * (1 - rel) / step), int(x * (1 + rel) / step) + 2):
+            v = round(q * step, 6)
+            if v > 0 and abs(v - x) <= rel * x: out.add(v)
+    return sorted(out, key=lambda v: abs(v - x))[:most]
+
+
+def dec(v):
+    s = ('%.6f' % v).rstrip('0').rstrip('.')
+    return s if '.' in s or len(s) else '0'
+
+
+class LogSteps:
+    """The log's step events with per-axis prefix counts, for moves cut at
+    event boundaries."""
+    def __init__(s, d, evt, evm, dirch, NA):
+        s.d, s.evt, s.evm, s.dirch, s.NA = d, evt, evm, dirch, NA
+        s.pc = [[0] * (len(evt) + 1) for _ in range(NA)]
+        s.axt = [[t for t, m in zip(evt, evm) if (m >> a) & 1] for a in range(NA)]
+        for a in range(NA):
+            pa = s.pc[a]; c = 0
+            for i, m in enumerate(evm):
+                c += (m >> a) & 1; pa[i + 1] = c
+
+    def move(s, i0, i1):
+        """The signed step counts of events [i0, i1): signs from the DIR
+        level at the axis's first step (None if an axis turns inside)."""
+        out = []
+        for a in range(s.NA):
+            n = s.pc[a][i1] - s.pc[a][i0]
+            if n:
+                j = i0
+                while not (s.evm[j] >> a) & 1: j += 1
+                if (s.d[s.evt[j]] >> (2 * a + 1)) & 1: n = -n
+            out.append(n)
+        return tuple(out)
+
+    def forced(s):
+        """Event indices where a DIR change forces a move boundary."""
+        return sorted({bisect.bisect_left(s.evt, t) for t, _ in s.dirch} - {0, len(s.evt)})
+
+
+class GrblRun:
+    """simulate_grbl, resumable: one segment at a time, state deep-copyable."""
+    def __init__(s, settings, ar, blocks=BLOCK_BUFFER_SIZE):
+        s.pl = Planner(ar, settings, blocks); s.gen = SegmentGenerator(ar, s.pl)
+        s.k = 0; s.queued = 0; s.started = False; s.pending = []
+
+    def _fill(s):
+        while s.queued < SEGMENT_BUFFER_SIZE - 1:
+            seg = s.gen.segment()
+            if seg is None: return
+            s.pending.append(seg); s.queued += 1
+
+    def _top(s, moves, flags):
+        while s.k < len(moves) and not s.pl.full():
+            s.pl.add(s.k, moves[s.k], *flags[s.k]); s.k += 1
+
+    def next(s, moves, flags):
+        while not s.pending:
+            if not s.started: s._top(moves, flags); s._fill(); s._top(moves, flags); s.started = True
+            elif s.queued: s.queued -= 1; s._fill(); s._top(moves, flags)
+            else: return None
+        return s.pending.pop(0)
+
+
+class Matcher:
+    """The predicted segments against the log's step events (planner_start
+    kept running): the start cycles that put every event in its tick."""
+    def __init__(s):
+        s.c = 0; s.lo, s.hi = -(1 << 62), 1 << 62; s.kk = 0; s.prev = -1; s.cnt = None
+        s.na = [0, 0]; s.soft = None  # steps per axis; soft: (c0, axis ticks) to sum the tick errors
+
+    def soft_feed(s, model, moves, seg):
+        """Soft mode: the ticks of each axis's steps against the log's,
+        summed (capped at 64 ticks a step), no stop at a difference."""
+        b, n, cycles = seg; c0, axt = s.soft
+        L, P = amass(model, cycles); NA = len(moves[b])
+        S = [abs(v) for v in moves[b]]; thr = max(S) << LMAX
+        if b != s.prev: s.cnt = [thr >> 1] * NA; s.prev = b
+        inc = [v << (LMAX - L) for v in S]; cnt = s.cnt; ct = model.ct; err = 0
+        for i in range(1, (n << L) + 1):
+            for a in range(NA):
+                cnt[a] += inc[a]
+                if cnt[a] > thr:
+                    cnt[a] -= thr; j = s.na[a]; s.na[a] += 1
+                    t = (c0 + s.c + i * P) // ct
+                    err += min(64, abs(t - axt[a][j])) if j < len(axt[a]) else 64
+        s.c += (n << L) * P
+        return err
+
+    def feed(s, model, moves, seg, evt, evm):
+        b, n, cycles = seg
+        L, P = amass(model, cycles); NA = len(moves[b])
+        S = [abs(v) for v in moves[b]]; thr = max(S) << LMAX
+        if b != s.prev: s.cnt = [thr >> 1] * NA; s.prev = b
+        inc = [v << (LMAX - L) for v in S]; cnt = s.cnt; ct = model.ct; ne = len(evt)
+        for i in range(1, (n << L) + 1):
+            mask = 0
+            for a in range(NA):
+                cnt[a] += inc[a]
+                if cnt[a] > thr: cnt[a] -= thr; mask |= 1 << a
+            if not mask: continue
+            if s.kk >= ne or evm[s.kk] != mask: return False
+            t0 = ct * evt[s.kk] - (s.c + i * P)
+            lo = max(s.lo, t0); hi = min(s.hi, t0 + ct - 1)
+            if lo > hi: return False
+            s.lo, s.hi = lo, hi; s.kk += 1
+            for a in range(NA): s.na[a] += (mask >> a) & 1
+        s.c += (n << L) * P
+        return True
+
+
+class Judge:
+    """A job (settings, move boundaries in events, G0/G1 per move, feed)
+    run through the model against the log, with snapshots at every move's
+    first segment to resume from after a local change."""
+    def __init__(s, model, ar, ls, settings, bounds, rapid, feed):
+        s.model, s.ar, s.ls = model, ar, ls
+        s.settings, s.bounds, s.rapid, s.feed = settings, list(bounds), list(rapid), feed
+        s.snaps = []; s.evals = 0
+        s.rebuild()
+
+    def rebuild(s):
+        s.moves = [s.ls.move(s.bounds[i], s.bounds[i + 1]) for i in range(len(s.bounds) - 1)]
+        s.flags = [(r, s.feed) for r in s.rapid]
+
+    def run(s, upto=None, snap=None, record=False, moves=None, flags=None):
+        """Events matched from the start (resuming from snap), stopping
+        once a segment of move upto comes; and whether all matched."""
+        moves = moves or s.moves; flags = flags or s.flags
+        s.evals += 1
+        if snap is None: run, m = GrblRun(s.settings, s.ar), Matcher()
+        else: run, m = copy.deepcopy(snap[2])
+        evt, evm = s.ls.evt, s.ls.evm
+        while True:
+            seg = run.next(moves, flags)
+            if seg is None: return m.kk, m.kk == len(evt), m
+            if seg[0] != m.prev:
+                if upto is not None and seg[0] >= upto: return m.kk, False, m
+                if record:  # the state before this segment was taken
+                    sn = copy.deepcopy((run, m)); sn[0].pending.insert(0, seg)
+                    s.snaps.append((seg[0], run.k, sn))
+            if not m.feed(s.model, moves, seg, evt, evm): return m.kk, False, m
+
+    def soft(s, snap, moves, flags, first, upto):
+        """The summed tick error of the steps of moves first..upto-1 (from
+        snap, the start cycle the middle of the range that snap allows)."""
+        s.evals += 1
+        run, m = copy.deepcopy(snap[2])
+        m.soft = ((m.lo + m.hi) // 2, s.ls.axt); err = 0
+        while True:
+            seg = run.next(moves, flags)
+            if seg is None or seg[0] >= upto: return err
+            e = m.soft_feed(s.model, moves, seg)
+            if seg[0] >= first: err += e
+
+    def snap_for(s, j):
+        """The latest snapshot whose planner has not read move j yet."""
+        best = None
+        for sn in s.snaps:
+            if sn[1] <= j: best = sn
+            else: break
+        return best
+
+    def drop(s, j):
+        s.snaps = [sn for sn in s.snaps if sn[1] <= j]
+
+
+def initial_job(chain, ls, feed_steps):
+    """Move boundaries from stepzip segment's moves (their first steps) and
+    the DIR changes; G0 where the cruise is above the G1 feed."""
+    first = sorted({bisect.bisect_left(ls.evt, m['ticks'][0]) for m in chain['moves']} | set(ls.forced()) | {0})
+    first = [f for f in first if f < len(ls.evt)]
+    bounds = first + [len(ls.evt)]
+    cruise = {}
+    for m in chain['moves']: cruise[bisect.bisect_left(ls.evt, m['ticks'][0])] = m['cruise']
+    rapid = [cruise.get(b, 0) > feed_steps * 1.03 for b in bounds[:-1]]
+    return bounds, rapid
+
+
+def settings_for(ar, spm, rate, accel, jdev):
+    v = ar.read_float
+    return dict(steps_mm=[v(dec(spm))] * 2, max_rate=[v(dec(rate))] * 2,
+                accel=[f32(f32(v(dec(accel)) * 60) * 60)] * 2, jdev=v(jdev))
+
+
+def recover(a, model):
+    t0 = time.process_time()
+    ar = Arith(a.planner_avr)
+    d, evt, evm, dirch = read_log(a.log, 2)
+    ls = LogSteps(d, evt, evm, dirch, 2)
+    if a.job and a.job.endswith('.json'): chain = json.load(open(a.job))['chains'][0]
+    else:
+        exe = a.stepzip or os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'build', 'stepzip')
+        out = subprocess.run([exe, 'segment', a.log, '--format', 'timed', '--tick-us', str(a.tick_us), '--to', 'json', '-c'],
+                             check=True, capture_output=True).stdout
+        chain = json.loads(out)['chains'][0]
+    rate_s = max(x['max_rate'] for x in chain['axes'])      # steps/s
+    acc_s = max(x['acceleration'] for x in chain['axes'])   # steps/s²
+    # the G1 feed: the commonest cruise (path steps/s, 0.5 % bins) under the
+    # rate limit, long moves counting most (short ones never reach it)
+    hist = {}
+    for m in chain['moves']:
+        if m['cruise'] < 0.97 * rate_s:
+            key = round(math.log(m['cruise']) / 0.005); hist[key] = hist.get(key, 0) + m['length'] ** 2
+    feed_s = math.exp(max(hist, key=hist.get) * 0.005) if hist else rate_s
+    print('recover: stepzip moves', len(chain['moves']), 'axis rate %.1f steps/s, acceleration %.1f steps/s², G1 cruise %.1f steps/s'
+          % (rate_s, acc_s, feed_s))
+    H = a.recover_moves  # moves judged in the settings search
+    bounds, rapid = initial_job(chain, ls, feed_s)
+    found = None
+    for spm in STEPS_MM:
+        cur, sc = search_settings(model, ar, ls, bounds, rapid, spm, rate_s, acc_s, feed_s, H, None)
+        print('  steps/mm %s: $110/$111 %s $120/$121 %s $11 %s G1 F%s: %d events of the first %d moves matched'
+              % (spm, dec(cur['rate']), dec(cur['accel']), cur['jdev'], dec(cur['feed']), sc, H))
+        if found is None or sc > found[0]: found = (sc, spm, cur)
+    _, spm, cur = found
+    J = judge_for(model, ar, ls, bounds, rapid, spm, cur)
+    print('  initial job: moves', len(J.moves), 'G0', sum(J.rapid))
+    t1 = time.process_time(); edits = {}
+    # fix the first H moves, settle the settings on them, then fix the rest
+    K, done = fix(J, m0=0, limit=bounds[min(H, len(bounds) - 1)], edits=edits, verbose=a.verbose)
+    cur, sc = search_settings(model, ar, ls, J.bounds, J.rapid, spm, rate_s, acc_s, feed_s, len(J.moves), cur)
+    print('  settings again on the fixed moves: $110/$111 %s $120/$121 %s $11 %s G1 F%s: %d events'
+          % (dec(cur['rate']), dec(cur['accel']), cur['jdev'], dec(cur['feed']), sc))
+    J = judge_for(model, ar, ls, J.bounds, J.rapid, spm, cur)
+    settings = J.settings
+    K, done = fix(J, m0=0, limit=None, edits=edits, verbose=a.verbose)
+    t2 = time.process_time()
+    print('  edits', edits, 'judge runs', J.evals, '; events matched', K, 'of', len(evt))
+    # the whole log from the recovered job alone
+    run = GrblRun(settings, ar); pred = []
+    while True:
+        seg = run.next(J.moves, J.flags)
+        if seg is None: break
+        pred.append(seg)
+    c0, k = planner_start(model, J.moves, pred, evt, evm)
+    out = planner_log(model, J.moves, pred, c0, len(d))
+    bad = [t for t in range(len(d)) if d[t] != out[t]]
+    print('  regenerated: start cycle', c0, '; ticks regenerated differently', len(bad), 'of', len(d),
+          '(first at tick %d)' % bad[0] if bad else '(byte-exact)')
+    mb = sum(gamma(v) for mv in J.moves for v in mv)
+    gb = len(J.moves)  # G0/G1: one bit a move (an entropy coder needs fewer)
+    p0 = sum(J.rapid) / len(J.rapid); hb = -len(J.rapid) * sum(q * math.log2(q) for q in (p0, 1 - p0) if q > 0)
+    sb = 6 * 8  # steps/mm, $110/$111, $120/$121, $11, F: a byte each and a header byte
+    print('  job: moves', len(J.moves), 'G0', sum(J.rapid), 'G1 feed', dec(cur['feed']), '; estimated bits: step counts', mb,
+          'G0/G1', gb, '(%.0f by entropy)' % hb, 'settings', sb, 'start', gamma(c0),
+          'total bytes', (mb + gb + sb + gamma(c0) + 7) // 8)
+    print('  CPU s: settings %.1f, moves %.1f, regeneration %.1f' % (t1 - t0, t2 - t1, time.process_time() - t2))
+    if a.out_job:
+        write_job(a.out_job, spm, cur, J)
+    return 0 if not bad else 2
+
+
+def judge_for(model, ar, ls, bounds, rapid, spm, cur):
+    return Judge(model, ar, ls, settings_for(ar, spm, cur['rate'], cur['accel'], cur['jdev']),
+                 bounds, rapid, ar.read_float(dec(cur['feed'])))
+
+
+def search_settings(model, ar, ls, bounds, rapid, spm, rate_s, acc_s, feed_s, H, cur):
+    """Coordinate descent over round decimals near the estimates: the
+    settings under which the model matches the most events of the first H
+    moves."""
+    grids = dict(rate=round_near(rate_s * 60 / spm), accel=round_near(acc_s / spm), jdev=JDEV,
+                 feed=round_near(feed_s * 60 / spm))
+    if cur is None: cur = {k: v[0] for k, v in grids.items()}
+
+    def score(c):
+        return judge_for(model, ar, ls, bounds, rapid, spm, c).run(upto=H)[0]
+    sc = score(cur)
+    for _ in range(2):
+        better = False
+        for key in ('rate', 'accel', 'jdev', 'feed'):
+            for v in grids[key]:
+                if v == cur[key]: continue
+                c2 = dict(cur, **{key: v}); s2 = score(c2)
+                if s2 > sc: sc, cur, better = s2, c2, True
+        if not better: break
+    return cur, sc
+
+
+def fix(J, m0, limit, edits, verbose):
+    """The judge loop: run to the first event that does not match, try the
+    local changes there, keep the one that matches furthest, repeat; stop
+    at event limit or when no change helps. Returns (events matched, all)."""
+    J.snaps = []
+    K, done, _ = J.run(record=True, upto=None if limit is None else bisect.bisect_right(J.bounds, limit))
+    while not done and (limit is None or K < limit):
+        m = bisect.bisect_right(J.bounds, K) - 1
+        bestk, bestc = K, None
+        for name, aff, bounds, rapid, top in edit_candidates(J, m, K):
+            moves = [J.ls.move(bounds[i], bounds[i + 1]) for i in range(len(bounds) - 1)]
+            flags = [(r, J.feed) for r in rapid]
+            k2, full, _ = J.run(upto=top, snap=J.snap_for(aff), moves=moves, flags=flags)
+            whole = full or k2 >= bounds[min(top, len(bounds) - 1)]  # matches up to the horizon
+            # a split must prove itself: both its parts match, or all up to the horizon
+            if k2 > bestk and (whole or not name.startswith('split') or k2 >= bounds[m + 2]):
+                bestk, bestc = k2, (name, aff, bounds, rapid)
+            if whole: break
+        if bestc is None:
+            bestc = soft_fix(J, m, K, verbose)
+        if bestc is None:
+            print('  stuck at event', K, 'tick', J.ls.evt[K], 'in move', m, 'of', len(J.moves)); break
+        name, aff, J.bounds, J.rapid = bestc[:4]
+        edits[name.split()[0]] = edits.get(name.split()[0], 0) + 1
+        if verbose: print('   ', K, 'move', m, name, '->', bestc[4] if len(bestc) > 4 else bestk)
+        J.rebuild(); J.drop(aff)
+        K, done, _ = J.run(snap=J.snap_for(aff), record=True,
+                           upto=None if limit is None else bisect.bisect_right(J.bounds, limit))
+    return K, done
+
+
+def soft_fix(J, m, K, verbose, W=8):
+    """No single change gets past event K of move m: several moves in the
+    look-ahead are cut wrong. Descend on the summed tick error of moves
+    m-1..m+4 over changes of moves m..m+W (boundary shifts, merges, G0/G1)
+    until the events match past K; returns the change or None."""
+    B, R = list(J.bounds), list(J.rapid)
+    snap = J.snap_for(m)
+    if snap is None: return None
+
+    def job(b, r):
+        return [J.ls.move(b[i], b[i + 1]) for i in range(len(b) - 1)], [(x, J.feed) for x in r]
+    err = J.soft(snap, *job(B, R), m - 1, m + 5)
+    for _ in range(12):
+        best = None
+        for j in range(m, min(m + W, len(R))):
+            cands = [(B, R[:j] + [not R[j]] + R[j + 1:])]
+            if j > 0:
+                for delta in (1, -1, 2, -2, 3, -3, 4, -4):
+                    if B[j - 1] < B[j] + delta < B[j + 1]:
+                        cands.append((B[:j] + [B[j] + delta] + B[j + 1:], R))
+                cands.append((B[:j] + B[j + 1:], R[:j] + R[j + 1:]))
+            for b, r in cands:
+                mv, fl = job(b, r)
+                e = J.soft(snap, mv, fl, m - 1, m + 5)
+                if e < err and (best is None or e < best[0]): best = (e, b, r)
+        if best is None: return None
+        err, B, R = best
+        mv, fl = job(B, R)
+        k2, full, _ = J.run(upto=min(m + 6, len(R)), snap=snap, moves=mv, flags=fl)
+        if verbose: print('      soft: error', err, 'events', k2)
+        if k2 > K: return ('soft', snap[1], B, R, k2)
+    return None
+
+
+def write_job(path, spm, cur, J):
+    """The recovered job as G-code (steps as mm at the recovered steps/mm)."""
+    lines = ['$100=%s' % dec(spm), '$101=%s' % dec(spm), '$110=%s' % dec(cur['rate']), '$111=%s' % dec(cur['rate']),
+             '$120=%s' % dec(cur['accel']), '$121=%s' % dec(cur['accel']), '$11=%s' % cur['jdev'],
+             'G21 G90 G94 G17', 'F%s' % dec(cur['feed'])]
+    pos = [0, 0]
+    for mv, r in zip(J.moves, J.rapid):
+        pos = [p + v for p, v in zip(pos, mv)]
+        lines.append('%s X%s Y%s' % ('G0' if r else 'G1', dec(pos[0] / spm), dec(pos[1] / spm)))
+    open(path, 'w').write('\n'.join(lines) + '\n')
+
+
+def edit_candidates(J, m, K):
+    """Local changes near the move m holding the first event K that does
+    not match, simplest first: (name, first move changed, bounds, G0 flags,
+    horizon move)."""
+    B, R = J.bounds, J.rapid; n = len(R); H = 6; out = []
+    for j in (m, m + 1, m - 1, m + 2, m - 2, m + 3):
+        if 0 <= j < n:
+            r = list(R); r[j] = not r[j]
+            out.append(('flip %d' % j, j, B, r, m + H))
+    for delta in (1, -1, 2, -2, 3, -3, 4, -4, 6, -6, 8, -8):
+        for j in (m + 1, m):
+            if 0 < j < n and B[j - 1] < B[j] + delta < B[j + 1]:
+                b = list(B); b[j] += delta
+                out.append(('shift %d %+d' % (j, delta), j - 1, b, R, m + H))
+    for j in (m + 1, m):
+        if 0 < j < n:
+            out.append(('merge %d' % j, j - 1, B[:j] + B[j + 1:], R[:j] + R[j + 1:], m + H - 1))
+    lo, hi = B[m], B[m + 1]
+    for w in range(0, hi - lo):
+        for e in (K - w, K + w) if w else (K,):
+            if lo < e < hi:
+                for f0, f in ((R[m], R[m]), (R[m], not R[m]), (not R[m], R[m]), (not R[m], not R[m])):
+                    out.append(('split %d' % m, m, B[:m + 1] + [e] + B[m + 1:], R[:m] + [f0, f] + R[m + 1:], m + H + 1))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('log'); ap.add_argument('job')
+    ap.add_argument('log'); ap.add_argument('job', nargs='?')
     ap.add_argument('--steps-mm', type=int, default=100)
     ap.add_argument('--cycles-per-tick', type=int, default=640)
     ap.add_argument('--thresholds', default='2000,4000,8000')
@@ -816,8 +1217,19 @@ def main():
                     help="with --planner: AVR arithmetic (double is float) instead of a PC build's")
     ap.add_argument('--planner-blocks', type=int, default=BLOCK_BUFFER_SIZE,
                     help='with --planner: planner ring size (it holds one block less)')
+    ap.add_argument('--recover', action='store_true',
+                    help='recover the job (settings, moves, G0/G1, feed) from LOG alone and regenerate LOG from it '
+                         '(JOB, optional: stepzip segment JSON of LOG)')
+    ap.add_argument('--out-job', help='with --recover: write the recovered job as G-code')
+    ap.add_argument('--stepzip', help='with --recover: the stepzip binary (default: build/stepzip of this tree)')
+    ap.add_argument('--tick-us', type=int, default=40, help="with --recover: the log's tick")
+    ap.add_argument('--recover-moves', type=int, default=30, help='with --recover: moves judged in the settings search')
+    ap.add_argument('--verbose', action='store_true', help='with --recover: every change made to the job')
     a = ap.parse_args()
+    if a.job is None and not a.recover: ap.error('JOB is required without --recover')
     model = Model(a.cycles_per_tick, [int(v) for v in a.thresholds.split(',')], a.segment_cycles)
+    if a.recover:
+        return recover(a, model)
     moves = read_moves(a.job, a.steps_mm)
     d, evt, evm, dirch = read_log(a.log, len(moves[0]))
     if a.restart:
