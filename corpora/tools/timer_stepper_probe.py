@@ -659,27 +659,9 @@ def simulate_grbl(moves, flags, settings, ar, blocks=BLOCK_BUFFER_SIZE):
     infinitely fast: the cycle starts with the planner full, the interrupt
     frees one segment slot at a time, the generator refills it at once, and
     the parser hands the planner a move whenever a block is freed."""
-    pl = Planner(ar, settings, blocks)
-    gen = SegmentGenerator(ar, pl)
-    out = []; k = 0; queued = 0
-
-    def fill():
-        nonlocal queued
-        while queued < SEGMENT_BUFFER_SIZE - 1:
-            seg = gen.segment()
-            if seg is None: return
-            out.append(seg); queued += 1
-
-    def top_up():
-        nonlocal k
-        while k < len(moves) and not pl.full():
-            pl.add(k, moves[k], *flags[k]); k += 1
-
-    top_up(); fill(); top_up()
-    while queued:
-        queued -= 1  # the interrupt finishes a segment
-        fill(); top_up()
-    return out, gen.replans
+    run = GrblRun(settings, ar, blocks); out = []
+    while (seg := run.next(moves, flags)) is not None: out.append(seg)
+    return out, run.gen.replans
 
 
 def amass(model, cycles):
@@ -714,24 +696,10 @@ def planner_start(model, moves, pred, evt, evm):
     the start cycles that put every step event into its tick. Returns
     (start cycle, events in their ticks); on a mismatch a start that fits
     the events before it."""
-    lo, hi = -(1 << 62), 1 << 62; k = 0; c = 0; prev = -1; NA = len(moves[0])
-    for b, n, cycles in pred:
-        L, P = amass(model, cycles)
-        S = [abs(v) for v in moves[b]]; thr = max(S) << LMAX
-        if b != prev: cnt = [thr >> 1] * NA; prev = b
-        inc = [v << (LMAX - L) for v in S]
-        for i in range(1, (n << L) + 1):
-            mask = 0
-            for a in range(NA):
-                cnt[a] += inc[a]
-                if cnt[a] > thr: cnt[a] -= thr; mask |= 1 << a
-            if not mask: continue
-            if k >= len(evt) or evm[k] != mask: return (lo + hi) // 2, k
-            t0 = model.ct * evt[k] - (c + i * P)
-            if max(lo, t0) > min(hi, t0 + model.ct - 1): return (lo + hi) // 2, k
-            lo, hi = max(lo, t0), min(hi, t0 + model.ct - 1); k += 1
-        c += (n << L) * P
-    return (lo + hi) // 2, k
+    m = Matcher()
+    for seg in pred:
+        if not m.feed(model, moves, seg, evt, evm): break
+    return (m.lo + m.hi) // 2, m.kk
 
 
 def planner_log(model, moves, pred, c0, size):
@@ -859,7 +827,8 @@ class LogSteps:
 
 
 class GrblRun:
-    """simulate_grbl, resumable: one segment at a time, state deep-copyable."""
+    """Grbl's cycle as simulate_grbl describes it, one segment a call
+    (simulate_grbl runs it to the end); its state can be deep-copied."""
     def __init__(s, settings, ar, blocks=BLOCK_BUFFER_SIZE):
         s.pl = Planner(ar, settings, blocks); s.gen = SegmentGenerator(ar, s.pl)
         s.k = 0; s.queued = 0; s.started = False; s.pending = []
@@ -883,8 +852,9 @@ class GrblRun:
 
 
 class Matcher:
-    """The predicted segments against the log's step events (planner_start
-    kept running): the start cycles that put every event in its tick."""
+    """The predicted segments against the log's step events, a segment a
+    call: the start cycles that put every event in its tick (planner_start
+    feeds it to the first mismatch)."""
     def __init__(s):
         s.c = 0; s.lo, s.hi = -(1 << 62), 1 << 62; s.kk = 0; s.prev = -1; s.cnt = None
         s.na = [0, 0]; s.soft = None  # steps per axis; soft: (c0, axis ticks) to sum the tick errors
